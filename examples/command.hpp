@@ -1,0 +1,32 @@
+// The conventions every `claspplan` subcommand follows.
+//
+// Exit codes: 0 success, 1 a valid problem without an answer (no claspable loop, no clasp found,
+// not secure), 2 malformed input or usage (a one-line reason on stderr), 3 internal error.
+// Malformed input is signalled by throwing std::invalid_argument anywhere below a command; main()
+// turns it into exit 2. With --json a command prints exactly one JSON object on stdout.
+#pragma once
+
+#include <functional>
+#include <string>
+
+#include <CLI/CLI.hpp>
+#include <nlohmann/json.hpp>
+
+namespace claspplan::cli {
+
+enum ExitCode : int { kOk = 0, kNoAnswer = 1, kBadInput = 2, kInternalError = 3 };
+
+/// The selected command's action; set by the subcommand's parse callback, run by main().
+using Action = std::function<int()>;
+
+/// Prints one JSON object on stdout (stable key order, full double precision).
+void print_json(const nlohmann::json& object);
+
+/// Progress and notes for humans go to stderr, so that stdout stays clean for --json.
+void progress(const std::string& message);
+
+// One function per subcommand, each in its cmd_<name>.cpp.
+void add_demo_command(CLI::App& app, Action& action);
+void add_linking_command(CLI::App& app, Action& action);
+
+}  // namespace claspplan::cli

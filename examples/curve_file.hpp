@@ -1,0 +1,16 @@
+// Curve files: one `x y z` per line (metres), `#` starts a comment, blank lines are ignored.
+// A closed curve's last point joins its first; a repeated first point at the end is dropped.
+#pragma once
+
+#include <string>
+
+#include "servo/linking.hpp"
+
+namespace claspplan::cli {
+
+/// Reads and validates a curve file (servo::validate_curve). Throws std::invalid_argument with the
+/// file name and line for missing files, malformed lines, NaN/Inf, too few points or zero-length
+/// segments.
+servo::Points read_curve_file(const std::string& path, bool closed);
+
+}  // namespace claspplan::cli
