@@ -28,5 +28,9 @@ void progress(const std::string& message);
 // One function per subcommand, each in its cmd_<name>.cpp.
 void add_demo_command(CLI::App& app, Action& action);
 void add_linking_command(CLI::App& app, Action& action);
+void add_robot_command(CLI::App& app, Action& action);
+void add_loops_command(CLI::App& app, Action& action);
+void add_run_command(CLI::App& app, Action& action);
+void add_verify_command(CLI::App& app, Action& action);
 
 }  // namespace claspplan::cli

@@ -33,6 +33,10 @@ int main(int argc, char** argv) {
   Action action;
   add_demo_command(app, action);
   add_linking_command(app, action);
+  add_robot_command(app, action);
+  add_loops_command(app, action);
+  add_run_command(app, action);
+  add_verify_command(app, action);
 
   const bool json = wants_json(argc, argv);
   try {

@@ -1,0 +1,163 @@
+// `claspplan robot NAME [--q Q1,Q2,...] [--json]`: a robot's actuated joints, the pose of tool0
+// and the finger curves at q (default: the arm's home pose with the hand's open pre-shape).
+#include <cerrno>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <sstream>
+
+#include "examples/command.hpp"
+#include "robots/collision_world.hpp"
+#include "robots/kinematics.hpp"
+#include "robots/robot_model.hpp"
+
+namespace claspplan::cli {
+namespace {
+
+struct RobotOptions {
+  std::string robot;
+  std::string q;
+  bool q_given = false;
+  bool json = false;
+};
+
+// "0.1,-1.5,2" -> numbers. Every entry must be a complete finite number.
+std::vector<double> parse_q(const std::string& text) {
+  std::vector<double> values;
+  std::stringstream ss(text);
+  std::string token;
+  int index = 0;
+  while (std::getline(ss, token, ',')) {
+    ++index;
+    const size_t a = token.find_first_not_of(" \t");
+    const size_t b = token.find_last_not_of(" \t");
+    token = a == std::string::npos ? "" : token.substr(a, b - a + 1);
+    if (token.empty())
+      throw std::invalid_argument("--q: value " + std::to_string(index) + " is empty");
+    char* end = nullptr;
+    errno = 0;
+    const double v = std::strtod(token.c_str(), &end);
+    if (end != token.c_str() + token.size() || errno == ERANGE)
+      throw std::invalid_argument("--q: value " + std::to_string(index) + " '" + token +
+                                  "' is not a number");
+    if (!std::isfinite(v))
+      throw std::invalid_argument("--q: value " + std::to_string(index) + " '" + token +
+                                  "' is not finite");
+    values.push_back(v);
+  }
+  if (values.empty() || (!text.empty() && text.back() == ','))
+    throw std::invalid_argument("--q: expected comma-separated joint values, got '" + text + "'");
+  return values;
+}
+
+nlohmann::json vec(const Eigen::Vector3d& v) {
+  return {v.x(), v.y(), v.z()};
+}
+
+int run_robot(const RobotOptions& o) {
+  const robots::RobotModel m = robots::load_robot(o.robot);
+  const Eigen::VectorXd q = o.q_given ? m.complete_q(parse_q(o.q)) : m.home;
+  robots::RobotData data(m);
+  robots::FingerCurvesData curves;
+  robots::finger_curves(m, q, data, curves, false);
+  robots::CollisionWorld world(m);
+  robots::CollisionReport contact;
+  const bool self_collision = world.in_collision(data, &contact);
+  const Eigen::Isometry3d& tool0 = data.link_poses[m.tool_link];
+
+  if (o.json) {
+    nlohmann::json joints = nlohmann::json::array();
+    for (const auto& j : m.joints) {
+      joints.push_back({{"name", j.name},
+                        {"lower", j.lower},
+                        {"upper", j.upper},
+                        {"hand", j.hand},
+                        {"open", j.open},
+                        {"closing", j.closing}});
+    }
+    nlohmann::json rotation = nlohmann::json::array();
+    for (int r = 0; r < 3; ++r)
+      rotation.push_back({tool0.linear()(r, 0), tool0.linear()(r, 1), tool0.linear()(r, 2)});
+    nlohmann::json finger_curves = nlohmann::json::array(), names = nlohmann::json::array();
+    for (size_t c = 0; c < curves.points.size(); ++c) {
+      nlohmann::json curve = nlohmann::json::array();
+      for (const auto& p : curves.points[c]) curve.push_back(vec(p));
+      finger_curves.push_back(curve);
+      names.push_back(m.curves[c].name);
+    }
+    nlohmann::json fingers = nlohmann::json::array();
+    for (const auto& f : m.fingers) {
+      nlohmann::json fj = nlohmann::json::array();
+      for (int j : f.joints) fj.push_back(m.joints[j].name);
+      fingers.push_back({{"name", f.name}, {"thumb", f.thumb}, {"joints", fj}});
+    }
+    nlohmann::json out = {
+        {"name", m.name},
+        {"source", m.source},
+        {"dof", m.dof()},
+        {"arm_dof", m.arm_dof},
+        {"hand_dof", m.hand_dof},
+        {"joints", joints},
+        {"q", std::vector<double>(q.data(), q.data() + q.size())},
+        {"tool0", {{"position", vec(tool0.translation())}, {"rotation", rotation}}},
+        {"finger_curves", finger_curves},
+        {"finger_curve_names", names},
+        {"fingers", fingers},
+        {"tcp", vec(robots::point_position(data, m.tcp))},
+        {"v_fwd", vec(robots::vector_direction(data, m.v_fwd))},
+        {"v_swd", vec(robots::vector_direction(data, m.v_swd))},
+        {"vlink_goal", m.vlink_goal},
+        {"self_collision", self_collision},
+    };
+    if (self_collision) out["self_collision_pair"] = {contact.first, contact.second};
+    print_json(out);
+    return kOk;
+  }
+
+  std::printf("%s (%s): %d actuated joints, %d arm + %d hand\n", m.name.c_str(), m.source.c_str(),
+              m.dof(), m.arm_dof, m.hand_dof);
+  std::printf("  %-3s %-20s %-4s %10s %10s %10s\n", "#", "joint", "part", "lower", "upper", "q");
+  for (int i = 0; i < m.dof(); ++i) {
+    const auto& j = m.joints[i];
+    std::printf("  %-3d %-20s %-4s %10.4f %10.4f %10.4f\n", i + 1, j.name.c_str(),
+                j.hand ? "hand" : "arm", j.lower, j.upper, q[i]);
+  }
+  const Eigen::Vector3d t = tool0.translation();
+  std::printf("tool0 position (m): %.4f %.4f %.4f\n", t.x(), t.y(), t.z());
+  for (int r = 0; r < 3; ++r) {
+    std::printf("%s %8.4f %8.4f %8.4f\n", r == 0 ? "tool0 rotation:    " : "                   ",
+                tool0.linear()(r, 0), tool0.linear()(r, 1), tool0.linear()(r, 2));
+  }
+  for (size_t c = 0; c < curves.points.size(); ++c) {
+    std::printf("finger curve %s (%zu points):\n", m.curves[c].name.c_str(),
+                curves.points[c].size());
+    for (const auto& p : curves.points[c]) std::printf("  %.4f %.4f %.4f\n", p.x(), p.y(), p.z());
+  }
+  std::printf("self-collision: %s\n",
+              self_collision ? (contact.first + " / " + contact.second).c_str() : "none");
+  return kOk;
+}
+
+}  // namespace
+
+void add_robot_command(CLI::App& app, Action& action) {
+  auto o = std::make_shared<RobotOptions>();
+  CLI::App* cmd = app.add_subcommand(
+      "robot",
+      "The actuated joints (name, limits, arm or hand), the pose of tool0 and the finger curves "
+      "of a robot at a configuration. NAME is a built-in robot (kr5_sdh, kr5_dlr, kr5_icub, "
+      "kr5_armar3) or the path of a hand-description YAML file.");
+  cmd->add_option("NAME", o->robot, "built-in robot or hand-description file")->required();
+  cmd->add_option(
+      "--q", o->q,
+      "joint values in radians (metres for prismatic joints), arm joints then hand joints in "
+      "the order listed; a shorter list leaves the rest at the home pose / open pre-shape. "
+      "Values outside a joint's limits are an error. Use --q=-1.5,... for a leading minus.");
+  cmd->add_flag("--json", o->json, "print one JSON object instead of the summary");
+  cmd->callback([o, cmd, &action] {
+    o->q_given = cmd->count("--q") > 0;
+    action = [o] { return run_robot(*o); };
+  });
+}
+
+}  // namespace claspplan::cli

@@ -1,0 +1,75 @@
+// `claspplan run SCENARIO.yaml [--out DIR] [--seed N] [--time-limit S] [--controller-only]
+// [--json]`: the main job on a scenario file.
+#include <cstdio>
+
+#include "examples/command.hpp"
+#include "examples/run_scenario.hpp"
+
+namespace claspplan::cli {
+namespace {
+
+struct RunCommandOptions {
+  std::string scenario;
+  RunOptions run;
+  std::uint64_t seed = 0;
+  double time_limit = 0.0;
+  bool no_pictures = false;
+  bool json = false;
+};
+
+void print_summary(const nlohmann::json& s, bool controller_only) {
+  if (controller_only) {
+    std::printf("%s: %s after %d steps, virtual linking %.3f\n",
+                s["success"].get<bool>() ? "clasped" : "not clasped",
+                s["reason"].get<std::string>().c_str(), s.value("steps", 0),
+                s.value("virtual_linking", 0.0));
+  } else if (s.value("verified", false)) {
+    std::printf(
+        "verified clasp: %d cycles after pre-expansion, %d nodes, %.2f s planning, "
+        "virtual linking %.3f\n",
+        s.value("cycles", 0), s.value("nodes", 0), s.value("seconds", 0.0),
+        s.value("virtual_linking", 0.0));
+  } else {
+    std::printf("no verified clasp: %s\n", s["reason"].get<std::string>().c_str());
+  }
+  std::printf("result: %s/result.json, timing.json and pictures (*.png)\n",
+              s["out"].get<std::string>().c_str());
+}
+
+}  // namespace
+
+void add_run_command(CLI::App& app, Action& action) {
+  auto o = std::make_shared<RunCommandOptions>();
+  CLI::App* cmd = app.add_subcommand(
+      "run",
+      "Run a scenario: depth -> loops -> plan -> close the fingers -> prune -> verify. Exit 0 on a "
+      "verified clasp (or, with --controller-only, when the controller reaches the hand's "
+      "virtual-linking goal), 1 when there is none, 2 on bad input.");
+  cmd->add_option("SCENARIO", o->scenario, "scenario file (YAML, see the README)")->required();
+  cmd->add_option("--out", o->run.out_dir, "output folder for result.json, timing.json and PNGs")
+      ->capture_default_str();
+  cmd->add_option("--seed", o->seed, "random seed (overrides the scenario's)");
+  cmd->add_option("--time-limit", o->time_limit, "planning wall-clock limit in seconds")
+      ->check(CLI::PositiveNumber);
+  cmd->add_flag("--controller-only", o->run.controller_only,
+                "no planning: iterate the clasp controller toward the nearest clasp target");
+  cmd->add_flag("--no-pictures", o->no_pictures, "skip the PNG pictures");
+  cmd->add_flag("--json", o->json, "print one JSON summary object instead of the text summary");
+  cmd->callback([o, cmd, &action] {
+    if (cmd->count("--seed")) o->run.seed = o->seed;
+    if (cmd->count("--time-limit")) o->run.time_limit = o->time_limit;
+    action = [o] {
+      o->run.pictures = !o->no_pictures;
+      o->run.quiet = o->json;
+      const RunOutcome outcome = run_scenario(load_scenario(o->scenario), o->run);
+      if (o->json) {
+        print_json(outcome.summary);
+      } else {
+        print_summary(outcome.summary, o->run.controller_only);
+      }
+      return outcome.exit_code;
+    };
+  });
+}
+
+}  // namespace claspplan::cli

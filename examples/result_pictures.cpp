@@ -1,0 +1,138 @@
+#include "examples/result_pictures.hpp"
+
+#include <Eigen/Geometry>
+#include <opencv2/imgcodecs.hpp>
+
+#include "robots/kinematics.hpp"
+
+namespace claspplan::cli {
+namespace {
+
+const cv::Scalar kArm(60, 140, 230);  // BGR: orange
+const cv::Scalar kHand(150, 150, 150);
+const cv::Scalar kObject(170, 200, 120);
+const cv::Scalar kBox(200, 190, 180);
+const cv::Scalar kLoop(30, 30, 220);  // red
+
+RenderMesh shape_mesh(const robots::CollisionShape& s) {
+  using Type = robots::CollisionShape::Type;
+  switch (s.type) {
+    case Type::kBox:
+      return box_mesh(s.size);
+    case Type::kSphere:
+      return sphere_mesh(s.radius);
+    case Type::kCylinder:
+      return cylinder_mesh(s.radius, s.length);
+    case Type::kCapsule:
+      return capsule_mesh(s.radius, s.length);
+  }
+  return {};
+}
+
+// The hand's finger curves and the object give the framing of close-up views.
+std::vector<Eigen::Vector3d> hand_points(const robots::RobotModel& model,
+                                         const Eigen::VectorXd& q) {
+  robots::RobotData data(model);
+  robots::FingerCurvesData curves;
+  robots::finger_curves(model, q, data, curves, false);
+  std::vector<Eigen::Vector3d> points;
+  for (const auto& c : curves.points) points.insert(points.end(), c.begin(), c.end());
+  return points;
+}
+
+Eigen::Vector3d hand_centre(const robots::RobotModel& model, const Eigen::VectorXd& q) {
+  Eigen::Vector3d sum = Eigen::Vector3d::Zero();
+  const auto points = hand_points(model, q);
+  for (const auto& p : points) sum += p;
+  return sum / static_cast<double>(points.size());
+}
+
+}  // namespace
+
+void draw_scene(SceneImage& image, const SceneGeometry& scene, const Eigen::VectorXd& q,
+                bool hand_only) {
+  for (const auto& b : scene.boxes) image.draw_mesh(box_mesh(b.size), b.pose.matrix(), kBox);
+  image.draw_mesh(scene.object, Eigen::Matrix4d::Identity(), kObject);
+  robots::RobotData data(scene.model);
+  robots::forward_kinematics(scene.model, q, data);
+  for (const auto& shape : scene.model.shapes) {
+    const bool hand = scene.model.links[shape.link].hand;
+    if (hand_only && !hand) continue;
+    image.draw_mesh(shape_mesh(shape), robots::shape_pose(data, shape).matrix(),
+                    hand ? kHand : kArm);
+  }
+  image.draw_polyline(scene.loop, true, kLoop, 3);
+}
+
+void write_clasp_views(const SceneGeometry& scene, const Eigen::VectorXd& q,
+                       const std::string& dir) {
+  const std::vector<Eigen::Vector3d> frame = hand_points(scene.model, q);
+  robots::RobotData data(scene.model);
+  robots::forward_kinematics(scene.model, q, data);
+  const Eigen::Vector3d forward = robots::vector_direction(data, scene.model.v_fwd);
+  const Eigen::Vector3d sideways = robots::vector_direction(data, scene.model.v_swd);
+  // A little from behind the hand, so the palm and the fingers' far side both show.
+  const std::pair<const char*, Eigen::Vector3d> views[] = {
+      {"clasp_front.png", sideways - 0.35 * forward},
+      {"clasp_side.png", forward.cross(sideways) - 0.35 * forward + 0.3 * sideways}};
+  for (const auto& [name, direction] : views) {
+    SceneImage image(framing_view(frame, direction));
+    draw_scene(image, scene, q, /*hand_only=*/true);
+    image.draw_label("final clasp (" + scene.model.name + "), loop in red; arm not drawn");
+    image.save(dir + "/" + name);
+  }
+}
+
+void write_tree_picture(const SceneGeometry& scene, const Eigen::VectorXd& q_start,
+                        const tsrrt::PlanResult& plan, const std::vector<Eigen::VectorXd>& path,
+                        const std::string& file) {
+  std::vector<Eigen::Vector3d> tree, solution, pruned;
+  for (const auto& x : plan.tree_points) tree.push_back(x.position);
+  for (int i : plan.solution_nodes) solution.push_back(plan.tree_points[i].position);
+  for (const auto& q : path) pruned.push_back(hand_centre(scene.model, q));
+  std::vector<Eigen::Vector3d> frame = tree;
+  frame.insert(frame.end(), scene.loop.begin(), scene.loop.end());
+  SceneImage image(framing_view(frame, Eigen::Vector3d(0.8, -1.0, 0.7)));
+  draw_scene(image, scene, q_start);
+  image.draw_points(tree, cv::Scalar(40, 40, 220), 3);
+  image.draw_points(solution, cv::Scalar(220, 80, 30), 4);
+  image.draw_polyline(pruned, false, cv::Scalar(40, 170, 40), 2, true);
+  image.draw_label("TS-RRT: " + std::to_string(plan.nodes) + " nodes (red), solution (blue), " +
+                   "pruned path (green)");
+  image.save(file);
+}
+
+void write_path_poses(const SceneGeometry& scene, const std::vector<Eigen::VectorXd>& path,
+                      const std::string& file) {
+  // Arc length along the joint-space path.
+  std::vector<double> s(path.size(), 0.0);
+  for (std::size_t i = 1; i < path.size(); ++i) s[i] = s[i - 1] + (path[i] - path[i - 1]).norm();
+  std::vector<Eigen::Vector3d> frame;
+  for (const auto& q : path) {
+    const auto h = hand_points(scene.model, q);
+    frame.insert(frame.end(), h.begin(), h.end());
+  }
+  frame.insert(frame.end(), scene.loop.begin(), scene.loop.end());
+  const View view = framing_view(frame, Eigen::Vector3d(0.9, -0.9, 0.6), 480, 360);
+  std::vector<cv::Mat> panels;
+  for (int percent : {20, 40, 60, 80}) {
+    const double target = s.back() * percent / 100.0;
+    std::size_t i = 0;
+    while (i + 2 < path.size() && s[i + 1] < target) ++i;
+    const double span = s[i + 1] - s[i];
+    const double f = span > 0.0 ? (target - s[i]) / span : 0.0;
+    const Eigen::VectorXd q =
+        path.size() > 1 ? Eigen::VectorXd(path[i] + f * (path[i + 1] - path[i])) : path.front();
+    SceneImage image(view);
+    draw_scene(image, scene, q);
+    image.draw_label(std::to_string(percent) + "% of the path");
+    panels.push_back(image.image());
+  }
+  cv::Mat top, bottom, all;
+  cv::hconcat(panels[0], panels[1], top);
+  cv::hconcat(panels[2], panels[3], bottom);
+  cv::vconcat(top, bottom, all);
+  if (!cv::imwrite(file, all)) throw std::runtime_error("cannot write " + file);
+}
+
+}  // namespace claspplan::cli

@@ -1,0 +1,33 @@
+// The main job, shared by `claspplan run` and `claspplan demo`: depth → loops → plan (or the
+// controller alone) → close the fingers → prune → verify, with the result files and pictures.
+#pragma once
+
+#include <cstdint>
+#include <optional>
+#include <string>
+
+#include <nlohmann/json.hpp>
+
+#include "examples/scenario.hpp"
+
+namespace claspplan::cli {
+
+struct RunOptions {
+  std::string out_dir = "claspplan-out";
+  std::optional<std::uint64_t> seed;  ///< overrides the scenario's seed
+  std::optional<double> time_limit;   ///< seconds, overrides the scenario's planner time limit
+  bool controller_only = false;
+  bool pictures = true;
+  bool quiet = false;  ///< no progress lines on stderr
+};
+
+struct RunOutcome {
+  int exit_code = 0;       ///< 0 verified clasp (or controller goal reached), 1 no answer
+  nlohmann::json summary;  ///< what `run --json` prints
+};
+
+/// Runs a scenario and writes result.json, timing.json and the pictures into options.out_dir.
+/// Throws std::invalid_argument for malformed input (a start pose in collision included).
+RunOutcome run_scenario(const Scenario& scenario, const RunOptions& options);
+
+}  // namespace claspplan::cli

@@ -1,0 +1,410 @@
+#include "examples/scenario.hpp"
+
+#include <cmath>
+#include <filesystem>
+#include <set>
+
+#include <yaml-cpp/yaml.h>
+
+#include "examples/objects.hpp"
+#include "examples/scene_render.hpp"
+#include "perception/camera.hpp"
+#include "perception/file_io.hpp"
+
+namespace claspplan::cli {
+namespace {
+
+namespace fs = std::filesystem;
+
+// Reads typed values from a YAML map, naming the file and key in every error.
+class Reader {
+ public:
+  Reader(const YAML::Node& node, std::string where) : node_(node), where_(std::move(where)) {
+    if (node_ && !node_.IsNull() && !node_.IsMap()) fail("", "expected a map of keys");
+  }
+
+  [[noreturn]] void fail(const std::string& key, const std::string& what) const {
+    throw std::invalid_argument(where_ + (key.empty() ? "" : "." + key) + ": " + what);
+  }
+
+  /// Rejects keys outside `allowed` (catches typos that would silently fall back to defaults).
+  void only(std::initializer_list<const char*> allowed) const {
+    if (!node_ || !node_.IsMap()) return;
+    const std::set<std::string> ok(allowed.begin(), allowed.end());
+    for (const auto& kv : node_) {
+      const std::string key = kv.first.as<std::string>();
+      if (!ok.count(key)) fail(key, "unknown key");
+    }
+  }
+
+  bool has(const std::string& key) const { return node_ && node_.IsMap() && node_[key]; }
+  YAML::Node operator[](const std::string& key) const { return node_[key]; }
+  Reader child(const std::string& key) const { return Reader(node_[key], where_ + "." + key); }
+
+  double number(const std::string& key, double fallback, double lo = -INFINITY,
+                double hi = INFINITY) const {
+    if (!has(key)) return fallback;
+    double v = 0.0;
+    try {
+      v = node_[key].as<double>();
+    } catch (const YAML::Exception&) {
+      fail(key, "expected a number");
+    }
+    if (!std::isfinite(v) || v < lo || v > hi) {
+      fail(key, "must be a finite number in [" + std::to_string(lo) + ", " + std::to_string(hi) +
+                    "], got " + node_[key].as<std::string>());
+    }
+    return v;
+  }
+
+  int integer(const std::string& key, int fallback, int lo, int hi) const {
+    if (!has(key)) return fallback;
+    long long v = 0;
+    try {
+      v = node_[key].as<long long>();
+    } catch (const YAML::Exception&) {
+      fail(key, "expected an integer");
+    }
+    if (v < lo || v > hi) {
+      fail(key, "must be in [" + std::to_string(lo) + ", " + std::to_string(hi) + "]");
+    }
+    return static_cast<int>(v);
+  }
+
+  std::string text(const std::string& key, const std::string& fallback = "") const {
+    if (!has(key)) return fallback;
+    if (!node_[key].IsScalar()) fail(key, "expected a string");
+    return node_[key].as<std::string>();
+  }
+
+  std::vector<double> numbers(const std::string& key, std::size_t size = 0) const {
+    if (!has(key)) return {};
+    const YAML::Node list = node_[key];
+    if (!list.IsSequence()) fail(key, "expected a list of numbers");
+    std::vector<double> out;
+    for (std::size_t i = 0; i < list.size(); ++i) {
+      double v = 0.0;
+      try {
+        v = list[i].as<double>();
+      } catch (const YAML::Exception&) {
+        fail(key, "entry " + std::to_string(i + 1) + " is not a number");
+      }
+      if (!std::isfinite(v)) fail(key, "entry " + std::to_string(i + 1) + " is not finite");
+      out.push_back(v);
+    }
+    if (size && out.size() != size) {
+      fail(key, "expected " + std::to_string(size) + " numbers, got " + std::to_string(out.size()));
+    }
+    return out;
+  }
+
+  Eigen::Vector3d vector3(const std::string& key, const Eigen::Vector3d& fallback) const {
+    if (!has(key)) return fallback;
+    const auto v = numbers(key, 3);
+    return {v[0], v[1], v[2]};
+  }
+
+  /// The pose this map gives by `position: [x, y, z]` and `rpy: [roll, pitch, yaw]` (URDF
+  /// convention Rz·Ry·Rx).
+  Eigen::Isometry3d pose_here() const {
+    const Eigen::Vector3d rpy = vector3("rpy", Eigen::Vector3d::Zero());
+    Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
+    T.linear() = (Eigen::AngleAxisd(rpy.z(), Eigen::Vector3d::UnitZ()) *
+                  Eigen::AngleAxisd(rpy.y(), Eigen::Vector3d::UnitY()) *
+                  Eigen::AngleAxisd(rpy.x(), Eigen::Vector3d::UnitX()))
+                     .toRotationMatrix();
+    T.translation() = vector3("position", Eigen::Vector3d::Zero());
+    return T;
+  }
+
+  /// A list of [x, y, z].
+  std::vector<Eigen::Vector3d> vectors(const std::string& key) const {
+    std::vector<Eigen::Vector3d> out;
+    if (!has(key)) return out;
+    if (!node_[key].IsSequence()) fail(key, "expected a list of [x, y, z]");
+    for (std::size_t i = 0; i < node_[key].size(); ++i) {
+      YAML::Node item;
+      item["p"] = node_[key][i];
+      out.push_back(Reader(item, where_ + "." + key + "[" + std::to_string(i) + "]")
+                        .vector3("p", Eigen::Vector3d::Zero()));
+    }
+    return out;
+  }
+
+  const std::string& where() const { return where_; }
+
+ private:
+  YAML::Node node_;
+  std::string where_;
+};
+
+std::string resolve(const fs::path& dir, const std::string& file) {
+  const fs::path p(file);
+  return (p.is_absolute() ? p : dir / p).lexically_normal().string();
+}
+
+void read_object(const Reader& r, const fs::path& dir, ObjectSpec& o) {
+  r.only({"depth", "cloud", "mesh", "shape", "pose", "views", "cameras", "noise"});
+  int sources = 0;
+  if (r.has("depth")) {
+    ++sources;
+    const YAML::Node list = r["depth"];
+    if (!list.IsSequence() || list.size() == 0)
+      r.fail("depth", "expected a list of {image, camera}");
+    for (std::size_t i = 0; i < list.size(); ++i) {
+      const Reader v(list[i], r.where() + ".depth[" + std::to_string(i) + "]");
+      v.only({"image", "camera"});
+      if (!v.has("image") || !v.has("camera")) v.fail("", "needs both image and camera");
+      o.depth.emplace_back(resolve(dir, v.text("image")), resolve(dir, v.text("camera")));
+    }
+  }
+  if (r.has("cloud")) ++sources, o.cloud = resolve(dir, r.text("cloud"));
+  if (r.has("mesh")) ++sources, o.mesh = resolve(dir, r.text("mesh"));
+  if (r.has("shape")) {
+    ++sources;
+    const Reader s = r.child("shape");
+    s.only({"type", "major_radius", "minor_radius", "radius", "holes", "body", "handle_radius",
+            "handle_tube"});
+    ShapeSpec shape;
+    shape.type = s.text("type");
+    const std::set<std::string> known = {"torus", "purse", "sphere", "holed_plate"};
+    if (!known.count(shape.type)) {
+      s.fail("type", "unknown shape '" + shape.type + "' (torus, purse, sphere, holed_plate)");
+    }
+    shape.major_radius = s.number("major_radius", shape.major_radius, 1e-3, 10.0);
+    shape.minor_radius = s.number("minor_radius", shape.minor_radius, 1e-4, 10.0);
+    if (shape.minor_radius >= shape.major_radius)
+      s.fail("minor_radius", "must be below major_radius");
+    shape.radius = s.number("radius", shape.radius, 1e-3, 10.0);
+    shape.holes = s.integer("holes", shape.holes, 0, 8);
+    shape.purse.body = s.vector3("body", shape.purse.body);
+    if ((shape.purse.body.array() <= 0.0).any()) s.fail("body", "needs three positive lengths");
+    shape.purse.handle_radius = s.number("handle_radius", shape.purse.handle_radius, 0.01, 2.0);
+    shape.purse.handle_tube = s.number("handle_tube", shape.purse.handle_tube, 0.002, 0.5);
+    if (shape.purse.handle_tube >= shape.purse.handle_radius) {
+      s.fail("handle_tube", "must be below handle_radius");
+    }
+    o.shape = shape;
+  }
+  if (sources != 1) r.fail("", "give exactly one of depth, cloud, mesh or shape");
+  if (r.has("pose")) {
+    const Reader pose = r.child("pose");
+    pose.only({"position", "rpy"});
+    o.pose = pose.pose_here();
+  }
+  o.views = r.vectors("views");
+  if (r.has("cameras")) {
+    if (!o.mesh.empty() || o.shape) {
+      const YAML::Node list = r["cameras"];
+      if (!list.IsSequence() || list.size() == 0)
+        r.fail("cameras", "expected a list of {position, target}");
+      for (std::size_t i = 0; i < list.size(); ++i) {
+        const Reader c(list[i], r.where() + ".cameras[" + std::to_string(i) + "]");
+        c.only({"position", "target"});
+        if (!c.has("position") || !c.has("target")) c.fail("", "needs position and target");
+        const Eigen::Vector3d position = c.vector3("position", Eigen::Vector3d::Zero());
+        const Eigen::Vector3d target = c.vector3("target", Eigen::Vector3d::Zero());
+        if ((position - target).norm() < 1e-3) c.fail("target", "must differ from the position");
+        o.cameras.emplace_back(position, target);
+      }
+    } else {
+      r.fail("cameras", "synthetic cameras render a mesh or shape");
+    }
+    if (!o.views.empty()) r.fail("views", "give views or cameras, not both");
+  }
+  if (r.has("noise")) {
+    const Reader n = r.child("noise");
+    n.only({"sigma", "dropout"});
+    o.noise.sigma = n.number("sigma", 0.0, 0.0, 0.1);
+    o.noise.dropout = n.number("dropout", 0.0, 0.0, 0.99);
+  }
+}
+
+}  // namespace
+
+Scenario load_scenario(const std::string& path) {
+  if (!fs::is_regular_file(path)) throw std::invalid_argument(path + ": no such scenario file");
+  YAML::Node root;
+  try {
+    root = YAML::LoadFile(path);
+  } catch (const YAML::Exception& e) {
+    throw std::invalid_argument(path + ": malformed YAML: " + e.msg + " (line " +
+                                std::to_string(e.mark.line + 1) + ")");
+  }
+  if (!root.IsMap()) throw std::invalid_argument(path + ": a scenario is a YAML map");
+  const Reader r(root, path);
+  r.only({"name", "robot", "start", "object", "environment", "clasp", "seed", "perception",
+          "controller", "planner"});
+  const fs::path dir = fs::path(path).parent_path();
+
+  Scenario s;
+  s.path = path;
+  s.name = r.text("name", fs::path(path).stem().string());
+  if (!r.has("robot"))
+    r.fail("robot", "missing (a built-in robot name or a hand-description file)");
+  s.robot = r.text("robot");
+  const std::vector<std::string> builtin = robots::builtin_robots();
+  if (std::find(builtin.begin(), builtin.end(), s.robot) == builtin.end()) {
+    s.robot = resolve(dir, s.robot);
+  }
+  s.start = r.numbers("start");
+  s.seed = static_cast<std::uint64_t>(r.integer("seed", 1, 0, 2147483647));
+
+  if (!r.has("object")) r.fail("object", "missing");
+  read_object(r.child("object"), dir, s.object);
+
+  if (r.has("environment")) {
+    const Reader env = r.child("environment");
+    env.only({"boxes"});
+    const YAML::Node boxes = env["boxes"];
+    if (boxes && !boxes.IsSequence()) env.fail("boxes", "expected a list");
+    for (std::size_t i = 0; boxes && i < boxes.size(); ++i) {
+      const Reader b(boxes[i], env.where() + ".boxes[" + std::to_string(i) + "]");
+      b.only({"size", "position", "rpy"});
+      EnvironmentBox box;
+      box.size = b.vector3("size", Eigen::Vector3d::Zero());
+      if ((box.size.array() <= 0.0).any()) b.fail("size", "needs three positive lengths");
+      box.pose = b.pose_here();
+      s.boxes.push_back(box);
+    }
+  }
+
+  const Reader clasp = r.child("clasp");
+  clasp.only({"near", "targets"});
+  if (clasp.has("near")) s.loop_hint = clasp.vector3("near", Eigen::Vector3d::Zero());
+  s.targets = clasp.integer("targets", s.targets, 1, 200);
+
+  const Reader per = r.child("perception");
+  per.only({"points", "d", "d_factor", "min_hole", "seed", "workspace", "remove_plane"});
+  auto& po = s.perception;
+  po.points = per.integer("points", po.points, 10, 1000000);
+  po.d = per.number("d", po.d, 0.0, 10.0);
+  po.d_factor = per.number("d_factor", po.d_factor, 0.5, 50.0);
+  po.min_hole = per.number("min_hole", po.min_hole, 0.0, 10.0);
+  po.seed =
+      static_cast<std::uint64_t>(per.integer("seed", static_cast<int>(s.seed), 0, 2147483647));
+  po.targets = s.targets;
+  if (per.has("remove_plane")) po.remove_plane = per["remove_plane"].as<bool>();
+  if (per.has("workspace")) {
+    const Reader w = per.child("workspace");
+    w.only({"min", "max"});
+    po.workspace = Eigen::AlignedBox3d(w.vector3("min", Eigen::Vector3d::Constant(-1e9)),
+                                       w.vector3("max", Eigen::Vector3d::Constant(1e9)));
+  }
+
+  const Reader ctl = r.child("controller");
+  ctl.only({"gain_distance", "gain_width", "dt", "max_step", "damping", "singular_threshold",
+            "hold_distance", "hand_in_arm_tasks", "arm_in_hand_task", "max_steps", "stall_steps"});
+  auto& pp = s.controller.priority;
+  pp.gain_distance = ctl.number("gain_distance", pp.gain_distance, 0.0, 10.0);
+  pp.gain_width = ctl.number("gain_width", pp.gain_width, 1e-6, 10.0);
+  pp.dt = ctl.number("dt", pp.dt, 1e-6, 10.0);
+  pp.max_step = ctl.number("max_step", pp.max_step, 1e-6, 1.0);
+  pp.damping = ctl.number("damping", pp.damping, 0.0, 10.0);
+  pp.singular_threshold = ctl.number("singular_threshold", pp.singular_threshold, 1e-9, 10.0);
+  auto& c = s.controller;
+  c.hold_distance = ctl.number("hold_distance", c.hold_distance, 0.0, 1.0);
+  c.hand_in_arm_tasks = ctl.number("hand_in_arm_tasks", c.hand_in_arm_tasks, 0.0, 1.0);
+  c.arm_in_hand_task = ctl.number("arm_in_hand_task", c.arm_in_hand_task, 0.0, 1.0);
+  s.controller_run.max_steps = ctl.integer("max_steps", s.controller_run.max_steps, 1, 1000000);
+  s.controller_run.stall_steps =
+      ctl.integer("stall_steps", s.controller_run.stall_steps, 1, 1000000);
+
+  const Reader pl = r.child("planner");
+  pl.only({"random_probability", "pre_expansions", "max_cycles", "time_limit", "extend_steps",
+           "connect_steps", "stall_steps", "linking_scale", "sample_min", "sample_max",
+           "goal_linking", "position_tolerance", "collision_resolution", "prune_attempts",
+           "closing_step", "closing_clearance", "verify_sequences", "verify_motions",
+           "verify_in_search"});
+  auto& o = s.planning;
+  auto& tp = o.planner;
+  tp.random_probability = pl.number("random_probability", tp.random_probability, 0.0, 1.0);
+  tp.pre_expansions = pl.integer("pre_expansions", tp.pre_expansions, 0, 1000000);
+  tp.max_cycles = pl.integer("max_cycles", tp.max_cycles, 1, 100000000);
+  tp.time_limit = pl.number("time_limit", tp.time_limit, 0.0, 1e6);
+  tp.extend_steps = pl.integer("extend_steps", tp.extend_steps, 1, 10000);
+  tp.connect_steps = pl.integer("connect_steps", tp.connect_steps, 1, 1000000);
+  tp.stall_steps = pl.integer("stall_steps", tp.stall_steps, 1, 1000000);
+  tp.linking_scale = pl.number("linking_scale", tp.linking_scale, 0.0, 100.0);
+  if (pl.has("sample_min") != pl.has("sample_max")) {
+    pl.fail("sample_min", "give both sample_min and sample_max, or neither");
+  }
+  if (pl.has("sample_min")) {
+    o.sample_box_given = true;
+    tp.sample_min = pl.vector3("sample_min", tp.sample_min);
+    tp.sample_max = pl.vector3("sample_max", tp.sample_max);
+    if ((tp.sample_max.array() <= tp.sample_min.array()).any()) {
+      pl.fail("sample_max", "must exceed sample_min in every coordinate");
+    }
+  }
+  tp.seed = s.seed;
+  o.goal_linking = pl.number("goal_linking", o.goal_linking, 0.0, 1.0);
+  o.position_tolerance = pl.number("position_tolerance", o.position_tolerance, 0.0, 10.0);
+  o.collision_resolution = pl.number("collision_resolution", o.collision_resolution, 1e-4, 1.0);
+  o.prune_attempts = pl.integer("prune_attempts", o.prune_attempts, 0, 1000000);
+  o.closing.step = pl.number("closing_step", o.closing.step, 1e-4, 0.5);
+  o.closing.clearance = pl.number("closing_clearance", o.closing.clearance, 0.0, 0.1);
+  o.secure.sequences = pl.integer("verify_sequences", o.secure.sequences, 1, 1000);
+  o.secure.motions = pl.integer("verify_motions", o.secure.motions, 1, 100000);
+  o.secure.seed = s.seed;
+  if (pl.has("verify_in_search")) {
+    try {
+      o.verify_in_search = pl["verify_in_search"].as<bool>();
+    } catch (const YAML::Exception&) {
+      pl.fail("verify_in_search", "expected true or false");
+    }
+  }
+  return s;
+}
+
+perception::PerceptionInputs scenario_inputs(const Scenario& s) {
+  const ObjectSpec& o = s.object;
+  perception::PerceptionInputs in;
+  if (!o.depth.empty()) {
+    std::vector<std::string> images, cameras;
+    for (const auto& [png, camera] : o.depth) images.push_back(png), cameras.push_back(camera);
+    return perception::load_inputs(images, cameras);
+  }
+  if (!o.cloud.empty()) return perception::load_inputs({o.cloud}, {});
+  perception::TriangleMesh mesh;
+  if (!o.mesh.empty()) {
+    const perception::PerceptionInputs file = perception::load_inputs({o.mesh}, {});
+    if (file.meshes.empty()) throw std::invalid_argument(o.mesh + ": not a mesh");
+    mesh = file.meshes.front();
+  } else if (o.shape->type == "torus") {
+    mesh = objects::torus_mesh(o.shape->major_radius, o.shape->minor_radius);
+  } else if (o.shape->type == "purse") {
+    mesh = objects::purse(o.shape->purse);
+  } else if (o.shape->type == "sphere") {
+    mesh = objects::sphere_mesh(o.shape->radius);
+  } else {
+    objects::HoledPlate plate;
+    plate.holes = o.shape->holes;
+    mesh = objects::holed_plate(plate);
+  }
+  mesh = perception::transformed(mesh, o.pose);
+  if (o.cameras.empty()) {
+    in.meshes.push_back(mesh);
+    in.view_positions = o.views;
+    return in;
+  }
+  // What a depth camera sees: the object and the environment.
+  for (const auto& b : s.boxes) {
+    const RenderMesh box = box_mesh(b.size);
+    perception::TriangleMesh m;
+    m.vertices = box.vertices;
+    for (const auto& t : box.triangles) m.triangles.push_back({t[0], t[1], t[2]});
+    perception::append_mesh(mesh, perception::transformed(m, b.pose));
+  }
+  for (std::size_t i = 0; i < o.cameras.size(); ++i) {
+    perception::DepthView view;
+    view.camera = objects::kinect_camera(o.cameras[i].first, o.cameras[i].second);
+    perception::DepthNoise noise = o.noise;
+    noise.seed = s.seed * 7919 + i;
+    view.image = perception::render_depth(mesh, view.camera, noise);
+    in.depth_views.push_back(view);
+  }
+  return in;
+}
+
+}  // namespace claspplan::cli

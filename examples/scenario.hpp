@@ -1,0 +1,75 @@
+// Scenario files (YAML): a robot, an object seen by depth cameras (or given as a cloud or mesh), a
+// static environment, a start configuration, which loop to clasp, and the parameters of
+// perception, controller and planner. The format is documented in the README ("Scenario files");
+// paths inside a scenario are relative to the scenario file.
+#pragma once
+
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include <Eigen/Geometry>
+
+#include "examples/objects.hpp"
+#include "perception/depth_render.hpp"
+#include "perception/pipeline.hpp"
+#include "servo/clasp_controller.hpp"
+#include "servo/controller_run.hpp"
+#include "tsrrt/clasp_planning.hpp"
+
+namespace claspplan::cli {
+
+/// A procedural object of examples/objects.hpp with its parameters.
+struct ShapeSpec {
+  std::string type;                                 ///< torus, purse, sphere, holed_plate
+  double major_radius = 0.1, minor_radius = 0.012;  ///< torus
+  double radius = 0.1;                              ///< sphere
+  int holes = 2;                                    ///< holed_plate
+  objects::Purse purse;                             ///< purse: body, handle_radius, handle_tube
+};
+
+struct ObjectSpec {
+  std::vector<std::pair<std::string, std::string>> depth;  ///< (png, camera yaml) pairs
+  std::string cloud;                                       ///< a .pcd/.ply/.xyz file
+  std::string mesh;                                        ///< a mesh file (.obj/.ply/.stl/.off)
+  std::optional<ShapeSpec> shape;                          ///< or a procedural object
+  Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();  ///< of a mesh or shape
+  /// Sample a mesh or shape only where visible from these camera positions (empty: whole surface).
+  std::vector<Eigen::Vector3d> views;
+  /// Or see it through synthetic depth cameras: the mesh and the environment boxes are rendered
+  /// into depth images (z-buffer, with `noise`), which then go through the depth pipeline.
+  std::vector<std::pair<Eigen::Vector3d, Eigen::Vector3d>> cameras;  ///< (position, target)
+  perception::DepthNoise noise;
+};
+
+struct EnvironmentBox {
+  Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();
+  Eigen::Vector3d size = Eigen::Vector3d::Zero();
+};
+
+struct Scenario {
+  std::string path;  ///< the file, as given
+  std::string name;
+  std::string robot;          ///< built-in name or resolved hand-description path
+  std::vector<double> start;  ///< q prefix (arm, then hand); the rest from the robot's home
+  ObjectSpec object;
+  std::vector<EnvironmentBox> boxes;
+  std::optional<Eigen::Vector3d> loop_hint;  ///< clasp the claspable loop nearest this point
+  int targets = 12;                          ///< clasp targets on the loop
+  std::uint64_t seed = 1;
+  perception::PerceptionOptions perception;
+  servo::ControllerParameters controller;
+  servo::ControllerRunOptions controller_run;
+  tsrrt::ClaspPlanningOptions planning;
+};
+
+/// Reads and validates a scenario. Throws std::invalid_argument with the file and key for missing
+/// files, malformed YAML, unknown keys, wrong types and out-of-range values.
+Scenario load_scenario(const std::string& path);
+
+/// Builds the perception inputs the scenario's object describes (files read, shapes meshed,
+/// synthetic depth images rendered).
+perception::PerceptionInputs scenario_inputs(const Scenario& scenario);
+
+}  // namespace claspplan::cli

@@ -1,0 +1,241 @@
+#include "perception/cloud_filters.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <numeric>
+#include <queue>
+#include <random>
+#include <stdexcept>
+
+#include <pcl/filters/statistical_outlier_removal.h>
+#include <pcl/point_cloud.h>
+#include <pcl/point_types.h>
+#include <pcl/sample_consensus/method_types.h>
+#include <pcl/sample_consensus/model_types.h>
+#include <pcl/segmentation/sac_segmentation.h>
+
+#include "perception/point_index.hpp"
+
+namespace claspplan::perception {
+
+namespace {
+
+pcl::PointCloud<pcl::PointXYZ>::Ptr to_pcl(const PointCloud& cloud) {
+  pcl::PointCloud<pcl::PointXYZ>::Ptr pc(new pcl::PointCloud<pcl::PointXYZ>);
+  pc->reserve(cloud.size());
+  for (const auto& p : cloud)
+    pc->push_back(pcl::PointXYZ(static_cast<float>(p.x()), static_cast<float>(p.y()),
+                                static_cast<float>(p.z())));
+  pc->width = static_cast<std::uint32_t>(pc->size());
+  pc->height = 1;
+  pc->is_dense = true;
+  return pc;
+}
+
+}  // namespace
+
+PointCloud crop_to_box(const PointCloud& cloud, const Eigen::AlignedBox3d& box) {
+  if (box.isEmpty()) return cloud;
+  PointCloud out;
+  out.reserve(cloud.size());
+  for (const auto& p : cloud)
+    if (box.contains(p)) out.push_back(p);
+  return out;
+}
+
+PointCloud random_subset(const PointCloud& cloud, int count, std::uint64_t seed) {
+  if (count < 0) throw std::invalid_argument("random_subset: negative count");
+  if (static_cast<int>(cloud.size()) <= count) return cloud;
+  std::vector<int> idx(cloud.size());
+  std::iota(idx.begin(), idx.end(), 0);
+  std::mt19937_64 rng(seed);
+  for (int i = 0; i < count; ++i) {  // partial Fisher-Yates
+    std::uniform_int_distribution<int> pick(i, static_cast<int>(idx.size()) - 1);
+    std::swap(idx[i], idx[pick(rng)]);
+  }
+  idx.resize(count);
+  std::sort(idx.begin(), idx.end());
+  PointCloud out;
+  out.reserve(count);
+  for (int i : idx) out.push_back(cloud[i]);
+  return out;
+}
+
+PlaneRemovalResult remove_supporting_plane(const PointCloud& cloud, const PlaneRemovalOptions& o) {
+  PlaneRemovalResult r;
+  r.kept = cloud;
+  if (cloud.size() < 100) return r;
+  const PointCloud sample = random_subset(cloud, o.ransac_sample, o.seed);
+  auto pc = to_pcl(sample);
+  pcl::SACSegmentation<pcl::PointXYZ> seg;
+  seg.setOptimizeCoefficients(true);
+  // The largest plane within max_tilt of horizontal (a box's side faces are never candidates).
+  seg.setModelType(pcl::SACMODEL_PERPENDICULAR_PLANE);
+  seg.setAxis(Eigen::Vector3f::UnitZ());
+  seg.setEpsAngle(o.max_tilt);
+  seg.setMethodType(pcl::SAC_RANSAC);
+  seg.setDistanceThreshold(o.distance);
+  seg.setMaxIterations(300);
+  seg.setInputCloud(pc);
+  pcl::PointIndices inliers;
+  pcl::ModelCoefficients coeffs;
+  seg.segment(inliers, coeffs);
+  if (coeffs.values.size() != 4 || inliers.indices.empty()) return r;
+  Eigen::Vector4d plane(coeffs.values[0], coeffs.values[1], coeffs.values[2], coeffs.values[3]);
+  const double nn = plane.head<3>().norm();
+  if (!(nn > 0) || !plane.allFinite()) return r;
+  plane /= nn;
+  if (plane.z() < 0) plane = -plane;
+  if (std::acos(std::min(1.0, plane.z())) > o.max_tilt) return r;
+  // Large, and the rest of the scene above it: a table, not an object's top face.
+  int on = 0, above = 0, below = 0;
+  for (const auto& p : cloud) {
+    const double s = plane.head<3>().dot(p) + plane.w();
+    if (std::abs(s) <= o.distance)
+      ++on;
+    else if (s > 0)
+      ++above;
+    else
+      ++below;
+  }
+  if (on < o.min_fraction * cloud.size()) return r;
+  if (above + below > 0 && above < o.above_fraction * (above + below)) return r;
+  r.kept.clear();
+  for (const auto& p : cloud)
+    if (plane.head<3>().dot(p) + plane.w() > o.distance) r.kept.push_back(p);
+  r.removed = true;
+  r.plane = plane;
+  r.plane_points = static_cast<int>(cloud.size() - r.kept.size());
+  return r;
+}
+
+PointCloud remove_statistical_outliers(const PointCloud& cloud, int k, double stddev_mult) {
+  if (k <= 0 || static_cast<int>(cloud.size()) <= k) return cloud;
+  auto pc = to_pcl(cloud);
+  pcl::StatisticalOutlierRemoval<pcl::PointXYZ> sor;
+  sor.setInputCloud(pc);
+  sor.setMeanK(k);
+  sor.setStddevMulThresh(stddev_mult);
+  pcl::Indices kept;
+  sor.filter(kept);
+  std::sort(kept.begin(), kept.end());
+  PointCloud out;
+  out.reserve(kept.size());
+  for (auto i : kept) out.push_back(cloud[i]);  // keep double precision
+  return out;
+}
+
+std::vector<int> farthest_point_indices(const PointCloud& cloud, int count, std::uint64_t seed) {
+  const int m = static_cast<int>(cloud.size());
+  std::vector<int> picked;
+  if (m == 0 || count <= 0) return picked;
+  if (count >= m) {
+    picked.resize(m);
+    std::iota(picked.begin(), picked.end(), 0);
+    return picked;
+  }
+  std::mt19937_64 rng(seed);
+  const int start = std::uniform_int_distribution<int>(0, m - 1)(rng);
+  PointIndex index(cloud);
+  std::vector<double> mind2(m);
+  std::vector<std::pair<double, int>> heap_data(m);
+  for (int i = 0; i < m; ++i) {
+    mind2[i] = (cloud[i] - cloud[start]).squaredNorm();
+    heap_data[i] = {mind2[i], i};
+  }
+  std::priority_queue<std::pair<double, int>> heap(std::less<std::pair<double, int>>(),
+                                                   std::move(heap_data));
+  picked.reserve(count);
+  picked.push_back(start);
+  mind2[start] = 0.0;
+  std::vector<std::pair<unsigned, double>> near;
+  while (static_cast<int>(picked.size()) < count && !heap.empty()) {
+    const auto [d2, i] = heap.top();
+    heap.pop();
+    if (d2 != mind2[i]) continue;  // stale entry
+    if (d2 <= 0.0) break;          // only duplicates of picked points remain
+    picked.push_back(i);
+    mind2[i] = 0.0;
+    // Only points closer to the new pick than to all earlier ones change, and all of those are
+    // within the current maximum distance sqrt(d2).
+    index.radius(cloud[i], std::sqrt(d2), near);
+    for (const auto& [j, dj2] : near) {
+      if (dj2 < mind2[j]) {
+        mind2[j] = dj2;
+        heap.emplace(dj2, static_cast<int>(j));
+      }
+    }
+  }
+  return picked;
+}
+
+PointCloud farthest_point_sample(const PointCloud& cloud, int count, std::uint64_t seed) {
+  PointCloud out;
+  for (int i : farthest_point_indices(cloud, count, seed)) out.push_back(cloud[i]);
+  return out;
+}
+
+double mean_spacing(const PointCloud& cloud) {
+  if (cloud.size() < 2) throw std::invalid_argument("mean spacing needs at least 2 points");
+  PointIndex index(cloud);
+  std::vector<unsigned> idx;
+  std::vector<double> d2;
+  double sum = 0.0;
+  for (const auto& p : cloud) {
+    index.knn(p, 2, idx, d2);
+    sum += std::sqrt(d2.size() > 1 ? d2[1] : 0.0);
+  }
+  return sum / cloud.size();
+}
+
+PointCloud spatial_order(const PointCloud& cloud) {
+  const Eigen::AlignedBox3d box = bounds(cloud);
+  if (box.isEmpty()) return cloud;
+  const double size = std::max(box.sizes().maxCoeff(), 1e-300);
+  auto spread = [](std::uint64_t x) {  // 21 bits -> every third bit
+    x &= 0x1fffff;
+    x = (x | x << 32) & 0x1f00000000ffffULL;
+    x = (x | x << 16) & 0x1f0000ff0000ffULL;
+    x = (x | x << 8) & 0x100f00f00f00f00fULL;
+    x = (x | x << 4) & 0x10c30c30c30c30c3ULL;
+    x = (x | x << 2) & 0x1249249249249249ULL;
+    return x;
+  };
+  std::vector<std::pair<std::uint64_t, int>> keys(cloud.size());
+  for (size_t i = 0; i < cloud.size(); ++i) {
+    const Eigen::Vector3d q = (cloud[i] - box.min()) / size * 2097151.0;
+    keys[i] = {spread(static_cast<std::uint64_t>(q.x())) |
+                   spread(static_cast<std::uint64_t>(q.y())) << 1 |
+                   spread(static_cast<std::uint64_t>(q.z())) << 2,
+               static_cast<int>(i)};
+  }
+  std::sort(keys.begin(), keys.end());
+  PointCloud out;
+  out.reserve(cloud.size());
+  for (const auto& k : keys) out.push_back(cloud[k.second]);
+  return out;
+}
+
+PointCloud unique_points(const PointCloud& cloud) {
+  std::vector<int> order(cloud.size());
+  std::iota(order.begin(), order.end(), 0);
+  auto less = [&](int a, int b) {
+    const auto& p = cloud[a];
+    const auto& q = cloud[b];
+    if (p.x() != q.x()) return p.x() < q.x();
+    if (p.y() != q.y()) return p.y() < q.y();
+    if (p.z() != q.z()) return p.z() < q.z();
+    return a < b;
+  };
+  std::sort(order.begin(), order.end(), less);
+  std::vector<char> keep(cloud.size(), 1);
+  for (size_t k = 1; k < order.size(); ++k)
+    if (cloud[order[k]] == cloud[order[k - 1]]) keep[order[k]] = 0;
+  PointCloud out;
+  out.reserve(cloud.size());
+  for (size_t i = 0; i < cloud.size(); ++i)
+    if (keep[i]) out.push_back(cloud[i]);
+  return out;
+}
+
+}  // namespace claspplan::perception

@@ -1,0 +1,43 @@
+#include "perception/complex.hpp"
+
+#include <cmath>
+#include <stdexcept>
+
+#include "perception/cloud_filters.hpp"
+
+namespace claspplan::perception {
+
+std::array<int, 3> SimplicialComplex::triangle_vertices(int t) const {
+  const auto& e0 = edges[triangles[t][0]];
+  const auto& e1 = edges[triangles[t][1]];
+  const int c = (e1[0] != e0[0] && e1[0] != e0[1]) ? e1[0] : e1[1];
+  return {e0[0], e0[1], c};
+}
+
+SimplicialComplex build_complex(const DelaunayGraph& delaunay, double d) {
+  if (!(d > 0) || !std::isfinite(d))
+    throw std::invalid_argument("d must be a positive number of metres, got " + std::to_string(d));
+  SimplicialComplex k;
+  k.points = delaunay.points;
+  k.d = d;
+  std::vector<int> renumber(delaunay.edges.size(), -1);
+  for (size_t e = 0; e < delaunay.edges.size(); ++e) {
+    if (delaunay.edge_length[e] < d) {
+      renumber[e] = static_cast<int>(k.edges.size());
+      k.edges.push_back(delaunay.edges[e]);
+      k.edge_length.push_back(delaunay.edge_length[e]);
+    }
+  }
+  for (const auto& t : delaunay.triangles) {
+    const int a = renumber[t[0]], b = renumber[t[1]], c = renumber[t[2]];
+    if (a >= 0 && b >= 0 && c >= 0) k.triangles.push_back({a, b, c});
+  }
+  return k;
+}
+
+double automatic_d(const PointCloud& points, double factor) {
+  if (!(factor > 0)) throw std::invalid_argument("the automatic-d factor must be > 0");
+  return factor * mean_spacing(points);
+}
+
+}  // namespace claspplan::perception

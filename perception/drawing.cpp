@@ -1,0 +1,117 @@
+#include "perception/drawing.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <numeric>
+#include <stdexcept>
+
+#include <opencv2/core.hpp>
+#include <opencv2/imgcodecs.hpp>
+#include <opencv2/imgproc.hpp>
+
+namespace claspplan::perception {
+
+void draw_object_model_png(const ObjectModel& model, const std::string& path, int width,
+                           int height) {
+  if (width < 100 || height < 100) throw std::invalid_argument("picture too small");
+  // Orthographic view: from the first camera's direction, else an oblique view from the front left.
+  Eigen::Matrix3d R;  // rows: screen right, screen down, away from the viewer
+  if (!model.views.empty()) {
+    R = model.views.front().camera.T_world_camera.linear().transpose();
+  } else {
+    const double az = -1.0, el = 0.55;
+    const Eigen::Vector3d to_eye(std::cos(el) * std::cos(az), std::cos(el) * std::sin(az),
+                                 std::sin(el));
+    const Eigen::Vector3d z = -to_eye;
+    const Eigen::Vector3d y = (-Eigen::Vector3d::UnitZ() + z.z() * z).normalized();
+    R.row(0) = y.cross(z);
+    R.row(1) = y;
+    R.row(2) = z;
+  }
+  const auto& pts = model.complex.points.empty() ? model.cloud : model.complex.points;
+  std::vector<Eigen::Vector3d> s(pts.size());
+  Eigen::AlignedBox2d box;
+  for (size_t i = 0; i < pts.size(); ++i) {
+    s[i] = R * pts[i];
+    box.extend(s[i].head<2>());
+  }
+  const int caption = 30 + 18 * static_cast<int>(std::min<size_t>(model.loops.size(), 8) + 1);
+  const double avail_w = width - 40.0, avail_h = height - 40.0 - caption;
+  const double scale = box.isEmpty() ? 1.0
+                                     : std::min(avail_w / std::max(box.sizes().x(), 1e-9),
+                                                avail_h / std::max(box.sizes().y(), 1e-9));
+  const Eigen::Vector2d centre =
+      box.isEmpty() ? Eigen::Vector2d(Eigen::Vector2d::Zero()) : Eigen::Vector2d(box.center());
+  auto px = [&](const Eigen::Vector3d& q) {
+    return cv::Point2d(width / 2.0 + scale * (q.x() - centre.x()),
+                       20.0 + avail_h / 2.0 + scale * (q.y() - centre.y()));
+  };
+  const int sub = 4;  // sub-pixel bits for anti-aliased drawing
+  auto fp = [&](const cv::Point2d& p) { return cv::Point(cvRound(p.x * 16), cvRound(p.y * 16)); };
+  cv::Mat img(height, width, CV_8UC3, cv::Scalar(255, 255, 255));
+  const auto& k = model.complex;
+
+  // Triangles back to front, shaded by how much they face the viewer.
+  std::vector<int> order(k.triangles.size());
+  std::iota(order.begin(), order.end(), 0);
+  std::vector<double> depth(k.triangles.size());
+  for (size_t t = 0; t < k.triangles.size(); ++t) {
+    const auto v = k.triangle_vertices(static_cast<int>(t));
+    depth[t] = s[v[0]].z() + s[v[1]].z() + s[v[2]].z();
+  }
+  std::sort(order.begin(), order.end(), [&](int a, int b) { return depth[a] > depth[b]; });
+  std::vector<char> in_triangle(k.edges.size(), 0);
+  for (const auto& t : k.triangles)
+    for (int e : t) in_triangle[e] = 1;
+  for (int t : order) {
+    const auto v = k.triangle_vertices(t);
+    const Eigen::Vector3d nrm = (s[v[1]] - s[v[0]]).cross(s[v[2]] - s[v[0]]);
+    const double facing = nrm.norm() > 0 ? std::abs(nrm.z()) / nrm.norm() : 0.0;
+    const int g = static_cast<int>(150 + 90 * facing);
+    const cv::Point poly[3] = {fp(px(s[v[0]])), fp(px(s[v[1]])), fp(px(s[v[2]]))};
+    cv::fillConvexPoly(img, poly, 3, cv::Scalar(g, g, g), cv::LINE_AA, sub);
+    cv::polylines(img, std::vector<cv::Point>(poly, poly + 3), true,
+                  cv::Scalar(g - 60, g - 60, g - 60), 1, cv::LINE_AA, sub);
+  }
+  for (size_t e = 0; e < k.edges.size(); ++e) {
+    if (in_triangle[e]) continue;
+    cv::line(img, fp(px(s[k.edges[e][0]])), fp(px(s[k.edges[e][1]])), cv::Scalar(110, 110, 110), 1,
+             cv::LINE_AA, sub);
+  }
+  // Loops on top: others blue, the best claspable one thick red.
+  for (int pass = 0; pass < 2; ++pass) {
+    for (size_t i = 0; i < model.loops.size(); ++i) {
+      const Loop& l = model.loops[i];
+      const bool best = i == 0 && l.claspable;
+      if (best != (pass == 1)) continue;
+      std::vector<cv::Point> line;
+      for (const auto& p : l.points) line.push_back(fp(px(R * p)));
+      const cv::Scalar colour = best          ? cv::Scalar(0, 0, 230)
+                                : l.claspable ? cv::Scalar(200, 120, 0)
+                                              : cv::Scalar(220, 160, 60);
+      cv::polylines(img, line, true, colour, best ? 4 : 2, cv::LINE_AA, sub);
+    }
+  }
+  // Caption.
+  char buf[256];
+  int y = height - caption + 18;
+  std::snprintf(buf, sizeof buf,
+                "K_d: %d points, %zu edges, %zu triangles, d = %.4f m; beta1 = %d%s",
+                k.vertex_count(), k.edges.size(), k.triangles.size(), model.d, model.beta1,
+                model.loops.empty() ? " (no loops)" : "");
+  cv::putText(img, buf, cv::Point(12, y), cv::FONT_HERSHEY_SIMPLEX, 0.5, cv::Scalar(0, 0, 0), 1,
+              cv::LINE_AA);
+  for (size_t i = 0; i < model.loops.size() && i < 8; ++i) {
+    const Loop& l = model.loops[i];
+    y += 18;
+    std::snprintf(buf, sizeof buf, "#%d %s  length %.3f m  %s", l.rank,
+                  i == 0 && l.claspable ? "(red)" : "(blue)", l.length, l.reason.c_str());
+    cv::putText(img, std::string(buf).substr(0, 140), cv::Point(12, y), cv::FONT_HERSHEY_SIMPLEX,
+                0.42, i == 0 && l.claspable ? cv::Scalar(0, 0, 200) : cv::Scalar(150, 90, 0), 1,
+                cv::LINE_AA);
+  }
+  if (!cv::imwrite(path, img)) throw std::runtime_error(path + ": cannot write the PNG");
+}
+
+}  // namespace claspplan::perception

@@ -1,0 +1,17 @@
+// A picture of K_d with its loops, the best one in red (like the paper's Fig. 3), via OpenCV.
+#pragma once
+
+#include <string>
+
+#include "perception/pipeline.hpp"
+
+namespace claspplan::perception {
+
+/// Draws the triangles of K_d (grey, shaded, back to front), its edges in no triangle (thin grey),
+/// the loops (blue; the best claspable one thick red) and a caption, seen from the first camera's
+/// direction if the model has views, else obliquely. Throws std::runtime_error if the file cannot
+/// be written.
+void draw_object_model_png(const ObjectModel& model, const std::string& path, int width = 900,
+                           int height = 700);
+
+}  // namespace claspplan::perception

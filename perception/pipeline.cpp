@@ -1,0 +1,237 @@
+#include "perception/pipeline.hpp"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <stdexcept>
+
+#include "perception/cloud_filters.hpp"
+#include "perception/depth_render.hpp"
+#include "perception/file_io.hpp"
+
+namespace claspplan::perception {
+
+namespace {
+
+// Down-sampling works on at most this many times N points (a seeded random subset first); depth
+// points are thinned to 3 N before the outlier filter, its cost dominating the 100 ms budget.
+constexpr int kOversample = 4;
+constexpr int kDepthOversample = 3;
+
+double seconds_since(std::chrono::steady_clock::time_point t0) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+}
+
+std::string lower_ext(const std::string& path) {
+  std::string e = std::filesystem::path(path).extension().string();
+  for (char& ch : e) ch = static_cast<char>(std::tolower(static_cast<unsigned char>(ch)));
+  return e;
+}
+
+void validate_options(const PerceptionOptions& o) {
+  if (o.points < 4 || o.points > 10'000'000)
+    throw std::invalid_argument("--points must be in 4..10000000, got " + std::to_string(o.points));
+  if (!(o.d >= 0) || !std::isfinite(o.d))
+    throw std::invalid_argument("--d must be > 0 metres (or 0 for automatic), got " +
+                                std::to_string(o.d));
+  if (!(o.d_factor > 0) || !std::isfinite(o.d_factor))
+    throw std::invalid_argument("the automatic-d factor must be > 0");
+  if (!(o.min_hole > 0) || !std::isfinite(o.min_hole))
+    throw std::invalid_argument("--min-hole must be > 0 metres, got " + std::to_string(o.min_hole));
+  if (o.targets < 1 || o.targets > 100000)
+    throw std::invalid_argument("--targets must be in 1..100000, got " + std::to_string(o.targets));
+}
+
+void say(const PerceptionOptions& o, const std::string& msg) {
+  if (o.progress) o.progress(msg);
+}
+
+std::string fmt(const char* f, double a, double b = 0, double c = 0) {
+  char buf[256];
+  std::snprintf(buf, sizeof buf, f, a, b, c);
+  return buf;
+}
+
+}  // namespace
+
+PerceptionInputs load_inputs(const std::vector<std::string>& paths,
+                             const std::vector<std::string>& cameras,
+                             const std::vector<Eigen::Vector3d>& view_positions) {
+  PerceptionInputs in;
+  in.view_positions = view_positions;
+  size_t pngs = 0;
+  for (const auto& p : paths) pngs += lower_ext(p) == ".png";
+  if (pngs != cameras.size())
+    throw std::invalid_argument(std::to_string(pngs) + " depth image(s) but " +
+                                std::to_string(cameras.size()) +
+                                " --camera file(s): give one camera per PNG, in the same order");
+  size_t cam = 0;
+  for (const auto& p : paths) {
+    if (lower_ext(p) == ".png") {
+      DepthView v;
+      v.camera = read_camera_yaml(cameras[cam++]);
+      v.image = read_depth_png(p, v.camera);
+      if (v.image.valid_count() == 0)
+        throw std::invalid_argument(p + ": the depth image has no reading (all pixels are 0)");
+      in.depth_views.push_back(std::move(v));
+      continue;
+    }
+    GeometryFile g = read_geometry(p);
+    if (g.is_mesh)
+      in.meshes.push_back(std::move(g.mesh));
+    else
+      in.clouds.push_back(std::move(g.cloud));
+  }
+  return in;
+}
+
+namespace {
+
+struct Prepared {
+  PointCloud cloud;
+  std::vector<DepthView> views;
+  int input_points = 0, plane_points = 0, outliers = 0;
+};
+
+Prepared prepare(const PerceptionInputs& in, const PerceptionOptions& o) {
+  validate_options(o);
+  if (in.depth_views.empty() && in.clouds.empty() && in.meshes.empty())
+    throw std::invalid_argument("no input: give depth images with --camera, clouds or meshes");
+  const int n = o.points;
+  const int budget = kOversample * n;
+  Prepared r;
+  PointCloud all;
+  // Depth: back-projection to the world frame, crop, supporting plane, outliers.
+  if (!in.depth_views.empty()) {
+    PointCloud depth;
+    for (const auto& v : in.depth_views) {
+      validate_camera(v.camera, "camera");
+      const auto pts = depth_to_points(v);
+      depth.insert(depth.end(), pts.begin(), pts.end());
+      r.views.push_back(v);
+    }
+    if (depth.empty()) throw std::invalid_argument("the depth images have no reading (all 0)");
+    r.input_points += static_cast<int>(depth.size());
+    depth = crop_to_box(depth, o.workspace);
+    if (depth.empty()) throw std::invalid_argument("no depth point lies inside the workspace box");
+    if (o.remove_plane) {
+      PlaneRemovalOptions po;
+      po.seed = o.seed;
+      PlaneRemovalResult pr = remove_supporting_plane(depth, po);
+      r.plane_points = pr.plane_points;
+      depth = std::move(pr.kept);
+      if (depth.empty()) throw std::invalid_argument("no depth point above the supporting plane");
+    }
+    depth = random_subset(depth, kDepthOversample * n, o.seed);
+    const size_t before = depth.size();
+    if (o.outlier_k > 0) depth = remove_statistical_outliers(depth, o.outlier_k, o.outlier_stddev);
+    r.outliers = static_cast<int>(before - depth.size());
+    all.insert(all.end(), depth.begin(), depth.end());
+  }
+  for (const auto& c : in.clouds) {
+    validate_cloud(c, "cloud");
+    r.input_points += static_cast<int>(c.size());
+    all.insert(all.end(), c.begin(), c.end());
+  }
+  if (!in.meshes.empty()) {
+    TriangleMesh scene;
+    for (const auto& m : in.meshes) {
+      validate_mesh(m, "mesh");
+      append_mesh(scene, m);
+    }
+    PointCloud samples;
+    if (!in.view_positions.empty()) {
+      const auto views = render_views(scene, in.view_positions);
+      samples = sample_visible_surface(scene, views, budget, o.seed);
+      r.views.insert(r.views.end(), views.begin(), views.end());
+    } else {
+      samples = sample_surface(scene, budget, o.seed);
+    }
+    r.input_points += static_cast<int>(samples.size());
+    all.insert(all.end(), samples.begin(), samples.end());
+  }
+  all = unique_points(all);
+  if (all.size() < 4)
+    throw std::invalid_argument("fewer than 4 distinct points (" + std::to_string(all.size()) +
+                                ") after filtering: nothing to triangulate");
+  all = random_subset(all, budget, o.seed + 1);
+  r.cloud = spatial_order(farthest_point_sample(all, n, o.seed + 2));
+  return r;
+}
+
+}  // namespace
+
+PointCloud object_points(const PerceptionInputs& in, const PerceptionOptions& o,
+                         std::vector<DepthView>* views_out) {
+  Prepared r = prepare(in, o);
+  if (views_out) *views_out = std::move(r.views);
+  return std::move(r.cloud);
+}
+
+ObjectModel build_object_model(const PerceptionInputs& in, const PerceptionOptions& o) {
+  using Clock = std::chrono::steady_clock;
+  const auto t_start = Clock::now();
+  ObjectModel m;
+  auto t = Clock::now();
+  Prepared r = prepare(in, o);
+  m.timings.preprocess = seconds_since(t);
+  m.cloud = std::move(r.cloud);
+  m.views = std::move(r.views);
+  m.input_points = r.input_points;
+  m.plane_points_removed = r.plane_points;
+  m.outliers_removed = r.outliers;
+
+  t = Clock::now();
+  m.mean_spacing = mean_spacing(m.cloud);
+  if (o.d > 0) {
+    m.d = o.d;
+    m.d_rule = fmt("d = %.4f m as given (%.2f x the mean spacing %.4f m)", m.d,
+                   m.d / m.mean_spacing, m.mean_spacing);
+  } else {
+    m.d = o.d_factor * m.mean_spacing;
+    m.d_rule =
+        fmt("automatic d = %.2f x mean spacing %.4f m = %.4f m", o.d_factor, m.mean_spacing, m.d);
+  }
+  m.timings.downsample = seconds_since(t);
+
+  t = Clock::now();
+  const DelaunayGraph dg = delaunay_3d(m.cloud);
+  m.timings.delaunay = seconds_since(t);
+  t = Clock::now();
+  m.complex = build_complex(dg, m.d);
+  m.timings.complex = seconds_since(t);
+  // Progress only once the input is known to be valid, so that errors stay one line on stderr.
+  if (m.plane_points_removed > 0)
+    say(o, fmt("perception: removed the supporting plane (%.0f points)", m.plane_points_removed));
+  say(o, fmt("perception: %.0f points (from %.0f); ", static_cast<double>(m.cloud.size()),
+             m.input_points) +
+             m.d_rule);
+  say(o, fmt("perception: K_d has %.0f edges and %.0f triangles (Delaunay: %.0f tetrahedra)",
+             static_cast<double>(m.complex.edges.size()),
+             static_cast<double>(m.complex.triangles.size()), dg.tetrahedra));
+
+  t = Clock::now();
+  const HomologyBasis basis = shortest_homology_basis(m.complex, o.homology);
+  m.timings.homology = seconds_since(t);
+  m.beta1 = basis.beta1;
+  say(o, fmt("perception: beta1 = %.0f (%.0f Dijkstra roots)", basis.beta1, basis.roots));
+
+  t = Clock::now();
+  for (const auto& c : basis.cycles) {
+    Loop l;
+    l.vertices = c.vertices;
+    for (int v : c.vertices) l.points.push_back(m.cloud[v]);
+    m.loops.push_back(std::move(l));
+  }
+  RankingOptions ro;
+  ro.min_hole = o.min_hole;
+  rank_loops(m.loops, m.cloud, m.views, ro);
+  if (const Loop* best = m.best()) m.targets = clasp_targets(best->points, o.targets);
+  m.timings.ranking = seconds_since(t);
+  m.timings.total = seconds_since(t_start);
+  return m;
+}
+
+}  // namespace claspplan::perception

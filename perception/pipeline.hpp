@@ -1,0 +1,97 @@
+// The whole perception path of paper Sec. IV-A in one call: inputs (depth images with cameras,
+// clouds, meshes) -> object points -> K_d -> shortest loops -> ranked loops -> clasp targets.
+//
+// Steps, in order:
+//  1. Depth views: back-projection, world transform, crop to the workspace box, supporting-plane
+//     removal (RANSAC), statistical outlier removal (both PCL). All views are merged first.
+//     Clouds are used as read; meshes are sampled uniformly by area with 4 N points, over the whole
+//     surface or only where visible from the --view positions.
+//  2. Down-sampling to N points: a seeded random subset of at most 4 N points (3 N for depth
+//     points, before the outlier filter, to bound its cost), then farthest-point sampling to N from
+//     a seeded start: nearly uniform spacing, deterministic with the seed; the N points are then
+//     put in Morton order (locality).
+//  3. d: given, or automatic_d() = 3.5 x the mean nearest-neighbour spacing of the N points.
+//  4. K_d from the CGAL 3-D Delaunay triangulation; the exact shortest H1 basis over Z2.
+//  5. Loops ranked (loops.hpp); k clasp targets on the best loop if it is claspable.
+#pragma once
+
+#include <cstdint>
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "perception/camera.hpp"
+#include "perception/complex.hpp"
+#include "perception/homology.hpp"
+#include "perception/loops.hpp"
+#include "perception/mesh.hpp"
+
+namespace claspplan::perception {
+
+struct PerceptionInputs {
+  std::vector<DepthView> depth_views;  ///< depth images with their cameras (world frame)
+  std::vector<PointCloud> clouds;      ///< point clouds, world frame
+  std::vector<TriangleMesh> meshes;    ///< sampled on their surface
+  /// Camera positions for meshes: if any, meshes are sampled only where visible from them (and
+  /// the rendered views join the occlusion test of the ranking).
+  std::vector<Eigen::Vector3d> view_positions;
+};
+
+/// Reads inputs by extension: `.png` files pair, in order, with `cameras` (one camera file per
+/// PNG); `.pcd .xyz` are clouds, `.obj .stl .off` meshes, `.ply` either. Throws
+/// std::invalid_argument for a count mismatch or any bad file.
+PerceptionInputs load_inputs(const std::vector<std::string>& paths,
+                             const std::vector<std::string>& cameras,
+                             const std::vector<Eigen::Vector3d>& view_positions = {});
+
+struct PerceptionOptions {
+  int points = 2000;       ///< N (the paper uses 2000)
+  double d = 0.0;          ///< 0: automatic
+  double d_factor = 3.5;   ///< automatic d = d_factor x mean spacing
+  double min_hole = 0.03;  ///< metres, see loops.hpp
+  int targets = 12;        ///< clasp targets on the best loop (the paper uses 9 to 24)
+  std::uint64_t seed = 1;
+  Eigen::AlignedBox3d workspace;  ///< crop box for depth points; empty = no crop
+  bool remove_plane = true;       ///< supporting-plane removal for depth input
+  int outlier_k = 10;             ///< statistical outlier removal (depth input); 0 = off
+  double outlier_stddev = 2.0;
+  HomologyOptions homology;
+  /// Optional progress messages for long steps (the CLI prints them on stderr).
+  std::function<void(const std::string&)> progress;
+};
+
+struct PerceptionTimings {
+  double preprocess = 0, downsample = 0, delaunay = 0, complex = 0, homology = 0, ranking = 0,
+         total = 0;  ///< seconds
+};
+
+/// The object representation (S, K_d, G) of paper Sec. IV-A, plus what it was made from.
+struct ObjectModel {
+  PointCloud cloud;           ///< the N points used
+  SimplicialComplex complex;  ///< K_d
+  double d = 0.0;             ///< the d used
+  std::string d_rule;         ///< how d was chosen, one line
+  double mean_spacing = 0.0;  ///< of the N points
+  int beta1 = 0;
+  std::vector<Loop> loops;           ///< ranked, best first
+  std::vector<ClaspTarget> targets;  ///< on loops[0] if it is claspable, else empty
+  std::vector<DepthView> views;      ///< cameras used by the occlusion test
+  int input_points = 0;              ///< points before down-sampling
+  int plane_points_removed = 0;
+  int outliers_removed = 0;
+  PerceptionTimings timings;
+
+  /// The best claspable loop, or nullptr.
+  const Loop* best() const { return !loops.empty() && loops[0].claspable ? &loops[0] : nullptr; }
+};
+
+/// Runs the pipeline. Throws std::invalid_argument for invalid inputs: no input, an empty cloud
+/// after filtering (e.g. an all-zero depth image), fewer than 4 distinct points, points that do
+/// not span 3-D, bad options. An object without loops is a valid result (beta1 = 0).
+ObjectModel build_object_model(const PerceptionInputs& inputs, const PerceptionOptions& options);
+
+/// The object points only (steps 1-2), for callers that want the cloud.
+PointCloud object_points(const PerceptionInputs& inputs, const PerceptionOptions& options,
+                         std::vector<DepthView>* views_out = nullptr);
+
+}  // namespace claspplan::perception

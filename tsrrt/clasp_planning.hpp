@@ -1,0 +1,116 @@
+// Clasp planning for a robot (paper Sec. IV-D, V-A): the TS-RRT bound to the clasp controller and
+// the collision world, finger closing until contact, path pruning, and the secure-clasp check.
+#pragma once
+
+#include <cstdint>
+#include <functional>
+#include <string>
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "robots/collision_world.hpp"
+#include "servo/clasp_controller.hpp"
+#include "tsrrt/planner.hpp"
+#include "tsrrt/problem.hpp"
+
+namespace claspplan::tsrrt {
+
+/// The TS-RRT's view of a clasp problem: TS-PROJECTION and TS-CONTROL from the clasp controller,
+/// COLLISION-FREE from the collision world (interpolated at `resolution`), TS-TOLERANCE on virtual
+/// linking and, if `position_tolerance` > 0, also on the hand's distance to the goal.
+class ClaspProblem final : public PlanningProblem {
+ public:
+  /// `acceptance` (optional) decides on goal nodes, see PlanningProblem::accept().
+  ClaspProblem(servo::ClaspController& controller, robots::CollisionWorld& world,
+               double goal_linking, double position_tolerance, double resolution,
+               std::function<bool(const Eigen::VectorXd&)> acceptance = {});
+  TaskPoint project(const Eigen::VectorXd& q) override;
+  Eigen::VectorXd control(const Eigen::VectorXd& q0, const TaskPoint& x0,
+                          const TaskPoint& x1) override;
+  bool motion_free(const Eigen::VectorXd& q0, const Eigen::VectorXd& q1) override;
+  bool reached(const TaskPoint& x, const TaskPoint& goal) const override;
+  bool accept(const Eigen::VectorXd& q) override { return !acceptance_ || acceptance_(q); }
+
+ private:
+  servo::ClaspController& controller_;
+  robots::CollisionWorld& world_;
+  double goal_linking_, position_tolerance_, resolution_;
+  std::function<bool(const Eigen::VectorXd&)> acceptance_;
+  Eigen::VectorXd last_q_;  // the last control() result: continuing from it keeps the alignment
+};
+
+struct FingerClosingOptions {
+  double step = 0.01;  ///< rad per closing step of a finger's joints
+  /// A finger stops where its links come within this of the object (m); the final pose is free.
+  double clearance = 0.002;
+  int max_steps = 400;
+};
+
+/// Closes each finger (the thumb included) along its joints' closing directions until its links
+/// are within the clearance of the object or its joints reach their limits; every step stays
+/// collision-free. Returns the closed configuration (the path's last pose).
+Eigen::VectorXd close_fingers(const robots::RobotModel& model, robots::CollisionWorld& world,
+                              const Eigen::VectorXd& q, const FingerClosingOptions& options);
+
+struct SecureClaspOptions {
+  int sequences = 10;               ///< paper Sec. V-A: 10 sequences ...
+  int motions = 500;                ///< ... of 500 random translations and rotations
+  double translation_step = 0.004;  ///< m per step of a motion
+  double rotation_step = 0.03;      ///< rad per step of a motion
+  int steps_per_motion = 25;        ///< a motion's longest run before it is cut short
+  /// The object is free once no finger loop links its loop any more and its loop is farther than
+  /// this from every finger curve (m).
+  double free_distance = 0.05;
+  std::uint64_t seed = 1;
+  int threads = 2;  ///< sequences run in parallel; the result does not depend on this
+};
+
+struct SecureClaspReport {
+  bool secure = false;
+  /// The hand already touches the object at q: the check cannot run (and is not passed).
+  bool start_in_collision = false;
+  int sequences = 0;
+  int escaped_sequences = 0;
+  int escape_motion = -1;  ///< the first escaping motion's index in its sequence, or -1
+  /// At the final pose (paper Fig. 6): |Lk| of each open finger curve with the loop, and VLk.
+  std::vector<double> open_linking;
+  std::vector<double> virtual_linking;
+  double min_open_linking = 0, max_open_linking = 0;
+  double min_virtual_linking = 0, max_virtual_linking = 0;
+};
+
+/// A closed tube of `radius` along a loop (hexagonal cross-section), as triangles. The loop is
+/// material of the object, so adding it to the collision mesh keeps the loop from slipping
+/// through gaps of a sparsely sampled surface (a thin handle seen by few depth views).
+void loop_tube(const servo::Points& loop, double radius, std::vector<Eigen::Vector3d>& vertices,
+               std::vector<Eigen::Vector3i>& triangles);
+
+/// The secure-clasp check of paper Sec. V-A on a closed hand at q: the object (its collision mesh,
+/// world frame, and its loop) is moved relative to the hand by random translations and rotations
+/// about the loop point nearest the hand, each pursued in small steps until it would collide.
+/// The clasp is secure when, in every sequence, the object never gets free (see free_distance).
+/// Only robot–object contacts stop a motion: the static environment is ignored, as is the
+/// object's own weight.
+SecureClaspReport check_secure_clasp(const robots::RobotModel& model,
+                                     const std::vector<Eigen::Vector3d>& object_vertices,
+                                     const std::vector<Eigen::Vector3i>& object_triangles,
+                                     const Eigen::VectorXd& q, const servo::Points& loop,
+                                     const SecureClaspOptions& options);
+
+/// Everything a planned clasp needs beyond the scene.
+struct ClaspPlanningOptions {
+  PlannerParameters planner;
+  bool sample_box_given = false;       ///< else the box is fitted around object and hand
+  double goal_linking = 0.0;           ///< 0: the hand's default goal
+  double position_tolerance = 0.0;     ///< metres; 0: virtual linking only (as in the paper)
+  double collision_resolution = 0.02;  ///< rad between checked configurations
+  FingerClosingOptions closing;
+  int prune_attempts = 100;
+  SecureClaspOptions secure;
+  /// Verify each goal node as it is found and go on searching when the clasp is not secure;
+  /// false: the first goal node ends the search (paper Alg. 3) and is verified afterwards.
+  bool verify_in_search = true;
+};
+
+}  // namespace claspplan::tsrrt

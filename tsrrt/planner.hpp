@@ -1,0 +1,63 @@
+// BUILD-TS-RRT (paper Alg. 1) with TS-EXTEND (Alg. 2) and TS-CONNECT-GOAL (Alg. 3), and the
+// randomized path pruning applied to its solution.
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "tsrrt/problem.hpp"
+
+namespace claspplan::tsrrt {
+
+struct PlannerParameters {
+  double random_probability = 0.1;  ///< P: chance of a random TS-EXTEND instead of goal connects
+  int pre_expansions = 50;          ///< n: random extensions before the main loop
+  int max_cycles = 300;             ///< K
+  double time_limit = 0.0;          ///< wall-clock limit in seconds; 0 = none
+  /// Controller steps per TS-EXTEND, each kept as a node: with the controller's 2 cm position
+  /// cap a one-step extension barely explores, so an extension runs up to ~20 cm.
+  int extend_steps = 10;
+  int connect_steps = 250;       ///< step cap of one TS-CONNECT-GOAL attempt
+  int stall_steps = 25;          ///< a connect attempt ends after this many steps without progress
+  double stall_position = 5e-4;  ///< metres of approach that count as progress
+  double stall_linking = 2e-3;   ///< virtual linking gained that counts as progress
+  /// RANDOM-TS-SAMPLE: positions uniform in this box (world frame), linking uniform in [0, 1].
+  Eigen::Vector3d sample_min = Eigen::Vector3d::Constant(-1.0);
+  Eigen::Vector3d sample_max = Eigen::Vector3d::Constant(1.0);
+  double linking_scale = 0.1;  ///< metres one unit of linking counts as, for nearest neighbours
+  std::uint64_t seed = 1;
+};
+
+struct PlanResult {
+  bool success = false;
+  std::string reason;                 ///< why the search ended without a goal
+  std::vector<Eigen::VectorXd> path;  ///< start to goal configuration, when successful
+  int goal_index = -1;                ///< which goal was reached
+  int cycles = 0;                     ///< cycles of Alg. 1's loop after the pre-expansion
+  int nodes = 0;
+  int control_steps = 0;
+  int rejected_goals = 0;  ///< nodes in goal tolerance that PlanningProblem::accept() refused
+  bool timed_out = false;
+  /// The tree, for pictures: each node's task point and parent.
+  std::vector<TaskPoint> tree_points;
+  std::vector<int> tree_parents;
+  std::vector<int> solution_nodes;  ///< tree indices of the path
+};
+
+/// Alg. 1. `goals` are the task-space goals x_goal = (p, 1.0) of the clasp targets.
+PlanResult build_ts_rrt(PlanningProblem& problem, const Eigen::VectorXd& q_init,
+                        const std::vector<TaskPoint>& goals, const PlannerParameters& p);
+
+/// Randomized path pruning: `attempts` times, pick two waypoints at random and join them directly
+/// when that motion is collision-free. The first and last waypoints stay.
+std::vector<Eigen::VectorXd> prune_path(PlanningProblem& problem, std::vector<Eigen::VectorXd> path,
+                                        int attempts, std::uint64_t seed);
+
+/// Uniform [0, 1) from the raw 64-bit stream, so plans are identical on every platform (the
+/// standard distributions are implementation-defined).
+double uniform01(std::uint64_t bits);
+
+}  // namespace claspplan::tsrrt
