@@ -1,74 +1,66 @@
-// `claspplan demo`: the linking core on a built-in example. A two-finger curve closes step by step
-// around one strand of a ring; Lk of the ring with the virtually closed finger loop switches from
-// 0 to 1 once the strand runs through it, and VLk (eq. 2) then rises as the cord shortens.
-#include <cmath>
+// `claspplan demo`: the embedded default scenario end to end. A box with a ring handle seen by two
+// depth cameras -> loops -> TS-RRT plan -> fingers closed -> verified clasp, with pictures.
 #include <cstdio>
 
 #include "examples/command.hpp"
-#include "servo/linking.hpp"
+#include "examples/demo_scenario.hpp"
+#include "examples/run_scenario.hpp"
 
 namespace claspplan::cli {
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
-
 struct DemoOptions {
+  RunOptions run;
+  std::uint64_t seed = 0;
   bool json = false;
 };
 
-// A ring of radius 0.1 m in the xy-plane; its strand at (0.1, 0, 0) runs along −y.
-servo::Points ring() {
-  servo::Points loop;
-  for (int i = 0; i < 64; ++i) {
-    const double t = -2.0 * kPi * i / 64;
-    loop.emplace_back(0.1 * std::cos(t), 0.1 * std::sin(t), 0.0);
-  }
-  return loop;
-}
-
-// Fingertip → finger joints → palm → thumb joints → thumb tip, as a 9-point arc of radius 0.04 m
-// in the xz-plane around the strand, opened by `span` radians and centred on the palm (−x side).
-servo::Points finger_curve(double span) {
-  servo::Points curve;
-  for (int i = 0; i < 9; ++i) {
-    const double t = kPi - span / 2.0 + span * i / 8.0;
-    curve.emplace_back(0.1 + 0.04 * std::cos(t), 0.0, 0.04 * std::sin(t));
-  }
-  return curve;
-}
-
-int run_demo(const DemoOptions& o) {
-  const servo::Points loop = ring();
-  nlohmann::json steps = nlohmann::json::array();
+int run_demo(DemoOptions& o) {
+  const Scenario scenario = load_scenario_text(kDemoScenarioText, kDemoScenarioName, ".");
+  o.run.quiet = o.json;
   if (!o.json) {
-    std::printf("A finger curve closes around a ring's strand (paper eq. 1-2):\n");
-    std::printf("%10s %8s %10s %10s %14s\n", "span/deg", "Lk", "cord/m", "VLk", "open Gauss");
+    std::printf(
+        "claspplan demo: %s (the KR5 R850 with a Schunk SDH, a box with a ring handle seen "
+        "by two depth cameras)\n",
+        kDemoScenarioName);
   }
-  for (int deg = 50; deg <= 350; deg += 20) {
-    const servo::Points finger = finger_curve(deg * kPi / 180.0);
-    const servo::VirtualLinking vlk = servo::virtual_linking(loop, finger);
-    const double open = servo::gauss_linking(loop, true, finger, false);
-    steps.push_back({{"span", deg * kPi / 180.0},
-                     {"linking", vlk.closed_linking},
-                     {"cord", vlk.cord},
-                     {"virtual_linking", vlk.value},
-                     {"open_linking", open}});
-    if (!o.json) {
-      std::printf("%10d %8d %10.4f %10.4f %14.4f\n", deg, vlk.closed_linking, vlk.cord, vlk.value,
-                  open);
-    }
+  const RunOutcome outcome = run_scenario(scenario, o.run);
+  if (o.json) {
+    print_json(outcome.summary);
+    return outcome.exit_code;
   }
-  if (o.json) print_json({{"steps", steps}});
-  return kOk;
+  const auto& s = outcome.summary;
+  if (s.value("verified", false)) {
+    std::printf(
+        "verified clasp: found after %d cycles (%d tree nodes) in %.2f s of planning; "
+        "virtual linking %.3f\n",
+        s.value("cycles", 0), s.value("nodes", 0), s.value("seconds", 0.0),
+        s.value("virtual_linking", 0.0));
+  } else {
+    std::printf("no verified clasp: %s\n", s.value("reason", std::string()).c_str());
+  }
+  std::printf(
+      "look at %s/clasp_front.png, clasp_side.png, tree.png and poses.png; the plan is in "
+      "result.json, the depth images in depth_*.png\n",
+      o.run.out_dir.c_str());
+  return outcome.exit_code;
 }
 
 }  // namespace
 
 void add_demo_command(CLI::App& app, Action& action) {
   auto o = std::make_shared<DemoOptions>();
-  CLI::App* cmd = app.add_subcommand("demo", "Run the built-in example");
-  cmd->add_flag("--json", o->json, "print one JSON object instead of the table");
-  cmd->callback([o, &action] { action = [o] { return run_demo(*o); }; });
+  o->run.out_dir = "claspplan-demo";
+  CLI::App* cmd = app.add_subcommand(
+      "demo",
+      "Run the embedded default scenario end to end (a few seconds) and write its pictures");
+  cmd->add_option("--out", o->run.out_dir, "output folder")->capture_default_str();
+  cmd->add_option("--seed", o->seed, "random seed (default: the scenario's)");
+  cmd->add_flag("--json", o->json, "print one JSON summary object instead of the text");
+  cmd->callback([o, cmd, &action] {
+    if (cmd->count("--seed")) o->run.seed = o->seed;
+    action = [o] { return run_demo(*o); };
+  });
 }
 
 }  // namespace claspplan::cli

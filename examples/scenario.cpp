@@ -2,7 +2,9 @@
 
 #include <cmath>
 #include <filesystem>
+#include <fstream>
 #include <set>
+#include <sstream>
 
 #include <yaml-cpp/yaml.h>
 
@@ -69,6 +71,15 @@ class Reader {
       fail(key, "must be in [" + std::to_string(lo) + ", " + std::to_string(hi) + "]");
     }
     return static_cast<int>(v);
+  }
+
+  bool boolean(const std::string& key, bool fallback) const {
+    if (!has(key)) return fallback;
+    try {
+      return node_[key].as<bool>();
+    } catch (const YAML::Exception&) {
+      fail(key, "expected true or false");
+    }
   }
 
   std::string text(const std::string& key, const std::string& fallback = "") const {
@@ -224,9 +235,17 @@ void read_object(const Reader& r, const fs::path& dir, ObjectSpec& o) {
 
 Scenario load_scenario(const std::string& path) {
   if (!fs::is_regular_file(path)) throw std::invalid_argument(path + ": no such scenario file");
+  std::ifstream in(path);
+  std::stringstream text;
+  text << in.rdbuf();
+  return load_scenario_text(text.str(), path, fs::path(path).parent_path().string());
+}
+
+Scenario load_scenario_text(const std::string& text, const std::string& path,
+                            const std::string& base_dir) {
   YAML::Node root;
   try {
-    root = YAML::LoadFile(path);
+    root = YAML::Load(text);
   } catch (const YAML::Exception& e) {
     throw std::invalid_argument(path + ": malformed YAML: " + e.msg + " (line " +
                                 std::to_string(e.mark.line + 1) + ")");
@@ -235,7 +254,7 @@ Scenario load_scenario(const std::string& path) {
   const Reader r(root, path);
   r.only({"name", "robot", "start", "object", "environment", "clasp", "seed", "perception",
           "controller", "planner"});
-  const fs::path dir = fs::path(path).parent_path();
+  const fs::path dir(base_dir);
 
   Scenario s;
   s.path = path;
@@ -284,7 +303,7 @@ Scenario load_scenario(const std::string& path) {
   po.seed =
       static_cast<std::uint64_t>(per.integer("seed", static_cast<int>(s.seed), 0, 2147483647));
   po.targets = s.targets;
-  if (per.has("remove_plane")) po.remove_plane = per["remove_plane"].as<bool>();
+  po.remove_plane = per.boolean("remove_plane", po.remove_plane);
   if (per.has("workspace")) {
     const Reader w = per.child("workspace");
     w.only({"min", "max"});
@@ -294,7 +313,8 @@ Scenario load_scenario(const std::string& path) {
 
   const Reader ctl = r.child("controller");
   ctl.only({"gain_distance", "gain_width", "dt", "max_step", "damping", "singular_threshold",
-            "hold_distance", "hand_in_arm_tasks", "arm_in_hand_task", "max_steps", "stall_steps"});
+            "hold_distance", "max_position_error", "pose_bias_gain", "hand_in_arm_tasks",
+            "arm_in_hand_task", "max_steps", "stall_steps"});
   auto& pp = s.controller.priority;
   pp.gain_distance = ctl.number("gain_distance", pp.gain_distance, 0.0, 10.0);
   pp.gain_width = ctl.number("gain_width", pp.gain_width, 1e-6, 10.0);
@@ -304,6 +324,8 @@ Scenario load_scenario(const std::string& path) {
   pp.singular_threshold = ctl.number("singular_threshold", pp.singular_threshold, 1e-9, 10.0);
   auto& c = s.controller;
   c.hold_distance = ctl.number("hold_distance", c.hold_distance, 0.0, 1.0);
+  c.max_position_error = ctl.number("max_position_error", c.max_position_error, 0.0, 10.0);
+  c.pose_bias_gain = ctl.number("pose_bias_gain", c.pose_bias_gain, 0.0, 10.0);
   c.hand_in_arm_tasks = ctl.number("hand_in_arm_tasks", c.hand_in_arm_tasks, 0.0, 1.0);
   c.arm_in_hand_task = ctl.number("arm_in_hand_task", c.arm_in_hand_task, 0.0, 1.0);
   s.controller_run.max_steps = ctl.integer("max_steps", s.controller_run.max_steps, 1, 1000000);
@@ -347,13 +369,7 @@ Scenario load_scenario(const std::string& path) {
   o.secure.sequences = pl.integer("verify_sequences", o.secure.sequences, 1, 1000);
   o.secure.motions = pl.integer("verify_motions", o.secure.motions, 1, 100000);
   o.secure.seed = s.seed;
-  if (pl.has("verify_in_search")) {
-    try {
-      o.verify_in_search = pl["verify_in_search"].as<bool>();
-    } catch (const YAML::Exception&) {
-      pl.fail("verify_in_search", "expected true or false");
-    }
-  }
+  o.verify_in_search = pl.boolean("verify_in_search", o.verify_in_search);
   return s;
 }
 

@@ -68,6 +68,10 @@ struct Scenario {
 /// files, malformed YAML, unknown keys, wrong types and out-of-range values.
 Scenario load_scenario(const std::string& path);
 
+/// The same from a scenario's text; `path` names it in messages, `base_dir` resolves its paths.
+Scenario load_scenario_text(const std::string& text, const std::string& path,
+                            const std::string& base_dir);
+
 /// Builds the perception inputs the scenario's object describes (files read, shapes meshed,
 /// synthetic depth images rendered).
 perception::PerceptionInputs scenario_inputs(const Scenario& scenario);

@@ -84,6 +84,18 @@ Eigen::VectorXd close_fingers(const robots::RobotModel& model, robots::Collision
   return q;
 }
 
+std::vector<double> open_finger_linking(const robots::RobotModel& model, const Eigen::VectorXd& q,
+                                        const servo::Points& loop) {
+  robots::RobotData data(model);
+  robots::FingerCurvesData curves;
+  robots::finger_curves(model, q, data, curves, false);
+  std::vector<double> values;
+  for (const auto& curve : curves.points) {
+    values.push_back(std::abs(servo::gauss_linking(loop, true, curve, false)));
+  }
+  return values;
+}
+
 void loop_tube(const servo::Points& loop, double radius, std::vector<Eigen::Vector3d>& vertices,
                std::vector<Eigen::Vector3i>& triangles) {
   constexpr int kSides = 6;
@@ -141,15 +153,13 @@ Eigen::Vector3d random_unit(std::mt19937_64& rng) {
   }
 }
 
-}  // namespace
-
-namespace {
-
-// One sequence of random object motions; true when the object got free.
+// One sequence of random object motions; true when the object got free. Stops early, setting
+// `timed_out`, once the options' deadline has passed.
 bool sequence_escapes(robots::CollisionWorld& world, const robots::RobotData& data,
                       const std::vector<std::vector<Eigen::Vector3d>>& curves,
                       const servo::Points& loop, const Eigen::Vector3d& pivot,
-                      const SecureClaspOptions& o, std::uint64_t seed, int& escape_motion) {
+                      const SecureClaspOptions& o, std::uint64_t seed, int& escape_motion,
+                      bool& timed_out) {
   std::mt19937_64 rng(seed);
   const auto escaped = [&](const Eigen::Isometry3d& T) {
     servo::Points moved(loop.size());
@@ -161,6 +171,10 @@ bool sequence_escapes(robots::CollisionWorld& world, const robots::RobotData& da
   };
   Eigen::Isometry3d T = Eigen::Isometry3d::Identity();  // the object's motion from its start
   for (int m = 0; m < o.motions; ++m) {
+    if (o.deadline && std::chrono::steady_clock::now() >= *o.deadline) {
+      timed_out = true;
+      return false;
+    }
     // A random screw: a translation and a rotation about the (moving) pivot, in small steps.
     const Eigen::Vector3d direction = random_unit(rng);
     const Eigen::Vector3d axis = random_unit(rng);
@@ -197,8 +211,8 @@ SecureClaspReport check_secure_clasp(const robots::RobotModel& model,
   robots::finger_curves(model, q, data, curves, false);
 
   // Paper Fig. 6: the Gauss integral of each open finger curve with the loop, and VLk.
+  report.open_linking = open_finger_linking(model, q, loop);
   for (const auto& curve : curves.points) {
-    report.open_linking.push_back(std::abs(servo::gauss_linking(loop, true, curve, false)));
     report.virtual_linking.push_back(std::abs(servo::virtual_linking(loop, curve).value));
   }
   const auto [min_open, max_open] =
@@ -235,12 +249,14 @@ SecureClaspReport check_secure_clasp(const robots::RobotModel& model,
   // number of threads.
   report.sequences = o.sequences;
   std::vector<int> escape_at(o.sequences, -1);
-  std::vector<char> escaped(o.sequences, 0);
+  std::vector<char> escaped(o.sequences, 0), timed_out(o.sequences, 0);
   const auto work = [&](int t) {
     for (int s = t; s < o.sequences; s += threads) {
+      bool late = false;
       escaped[s] =
           sequence_escapes(worlds[t], data, curves.points, loop, pivot, o,
-                           o.seed * 1000003ULL + static_cast<std::uint64_t>(s), escape_at[s]);
+                           o.seed * 1000003ULL + static_cast<std::uint64_t>(s), escape_at[s], late);
+      timed_out[s] = late;
     }
   };
   std::vector<std::thread> pool;
@@ -248,11 +264,12 @@ SecureClaspReport check_secure_clasp(const robots::RobotModel& model,
   work(0);
   for (auto& th : pool) th.join();
   for (int s = 0; s < o.sequences; ++s) {
+    report.timed_out |= timed_out[s] != 0;
     if (!escaped[s]) continue;
     ++report.escaped_sequences;
     if (report.escape_motion < 0) report.escape_motion = escape_at[s];
   }
-  report.secure = report.escaped_sequences == 0;
+  report.secure = report.escaped_sequences == 0 && !report.timed_out;
   return report;
 }
 

@@ -2,8 +2,10 @@
 // the collision world, finger closing until contact, path pruning, and the secure-clasp check.
 #pragma once
 
+#include <chrono>
 #include <cstdint>
 #include <functional>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -64,12 +66,15 @@ struct SecureClaspOptions {
   double free_distance = 0.05;
   std::uint64_t seed = 1;
   int threads = 2;  ///< sequences run in parallel; the result does not depend on this
+  /// Give up (not secure, timed_out) once this passes; none by default.
+  std::optional<std::chrono::steady_clock::time_point> deadline;
 };
 
 struct SecureClaspReport {
   bool secure = false;
   /// The hand already touches the object at q: the check cannot run (and is not passed).
   bool start_in_collision = false;
+  bool timed_out = false;  ///< the deadline passed before the check finished (not passed)
   int sequences = 0;
   int escaped_sequences = 0;
   int escape_motion = -1;  ///< the first escaping motion's index in its sequence, or -1
@@ -79,6 +84,11 @@ struct SecureClaspReport {
   double min_open_linking = 0, max_open_linking = 0;
   double min_virtual_linking = 0, max_virtual_linking = 0;
 };
+
+/// |Lk| of each open finger curve of the hand at q with the loop: the Gauss integral the paper's
+/// Fig. 6 plots.
+std::vector<double> open_finger_linking(const robots::RobotModel& model, const Eigen::VectorXd& q,
+                                        const servo::Points& loop);
 
 /// A closed tube of `radius` along a loop (hexagonal cross-section), as triangles. The loop is
 /// material of the object, so adding it to the collision mesh keeps the loop from slipping

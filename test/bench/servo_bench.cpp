@@ -1,6 +1,8 @@
 // Kernels of the linking core (issue 2 budgets in the comments).
 #include <benchmark/benchmark.h>
 
+#include "robots/robot_model.hpp"
+#include "servo/clasp_controller.hpp"
 #include "servo/linking.hpp"
 #include "test/support/curves.hpp"
 
@@ -89,6 +91,29 @@ void BM_OpenGaussWithGradient4Fingers(benchmark::State& state) {
   }
 }
 BENCHMARK(BM_OpenGaussWithGradient4Fingers);
+
+}  // namespace
+}  // namespace claspplan::test
+
+namespace claspplan::test {
+namespace {
+
+// One TS-CONTROL step (Alg. 4) for kr5_icub, 21 joints: FK and finger-curve Jacobians, the three
+// features with their Jacobians, and the hierarchy. Budget: 50 µs. The ring passes through the
+// hand, so the linking task is active.
+void BM_ControlStepIcub(benchmark::State& state) {
+  const robots::RobotModel model = robots::load_robot("kr5_icub");
+  servo::ClaspController probe(model, hundred_segment_loop(),
+                               {{Eigen::Vector3d(5, 0, 0), Eigen::Vector3d::UnitY()}});
+  const Eigen::Vector3d centre = probe.project(model.home).position;
+  const servo::HandKinematics& hand = probe.hand();
+  const Curve ring = circle(centre + 0.15 * hand.forward, 0.15, -hand.forward, hand.sideways, 100);
+  std::vector<servo::ClaspTarget> targets;
+  for (int i = 0; i < 12; ++i) targets.push_back({ring[i * 8], hand.sideways});
+  servo::ClaspController controller(model, ring, targets);
+  for (auto _ : state) benchmark::DoNotOptimize(controller.step(model.home, centre, 1.0));
+}
+BENCHMARK(BM_ControlStepIcub);
 
 }  // namespace
 }  // namespace claspplan::test

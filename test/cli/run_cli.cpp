@@ -1,0 +1,358 @@
+// `claspplan run`, `verify` and `demo` on the committed scenario files, as a user runs them.
+#include <filesystem>
+#include <fstream>
+
+#include <Eigen/Geometry>
+#include <gtest/gtest.h>
+
+#include "robots/collision_world.hpp"
+#include "robots/kinematics.hpp"
+#include "test/support/cli_runner.hpp"
+
+namespace claspplan::test {
+namespace {
+
+using nlohmann::json;
+
+std::string scenario(const std::string& name) {
+  return std::string(CLASPPLAN_SCENARIOS) + "/" + name + ".yaml";
+}
+
+json read_json(const std::string& path) {
+  std::ifstream in(path);
+  return json::parse(in);
+}
+
+Eigen::VectorXd vector_of(const json& a) {
+  Eigen::VectorXd v(a.size());
+  for (std::size_t i = 0; i < a.size(); ++i) v[i] = a[i].get<double>();
+  return v;
+}
+
+// --- Controller-only clasping (servo issue) ------------------------------------------------------
+
+class ControllerRing : public ::testing::TestWithParam<std::pair<std::string, double>> {};
+
+TEST_P(ControllerRing, ClaspsAnUnobstructedRingHandle) {
+  const auto [hand, goal] = GetParam();
+  TempDir dir;
+  const CliResult r = run_cli({"run", scenario("controller_ring_" + hand), "--controller-only",
+                               "--out", dir.file("out"), "--json"});
+  ASSERT_EQ(r.exit_code, 0) << r.out << r.err;
+  const json s = r.json();
+  EXPECT_TRUE(s["success"].get<bool>());
+  EXPECT_GE(s["virtual_linking"].get<double>(), goal);  // the hand's default goal (paper Sec. V)
+  EXPECT_GT(s["steps"].get<int>(), 0);
+  EXPECT_TRUE(s.contains("seconds"));
+
+  const json result = read_json(dir.file("out/result.json"));
+  for (const char* key :
+       {"scenario", "robot", "seed", "joint_names", "waypoints", "final_q", "loop", "success",
+        "virtual_linking", "finger_virtual_linking", "finger_open_linking"}) {
+    EXPECT_TRUE(result.contains(key)) << key;
+  }
+  EXPECT_EQ(result["robot"], "kr5_" + hand);
+  EXPECT_EQ(result["final_q"], result["waypoints"].back());
+  EXPECT_EQ(result["finger_virtual_linking"].size(), result["finger_open_linking"].size());
+  EXPECT_TRUE(std::filesystem::exists(dir.file("out/timing.json")));
+  EXPECT_FALSE(result.contains("seconds"));  // timings stay out of result.json
+
+  // VLk rises through the closing phase: from the first step that links on, it never drops.
+  const auto history = result["linking_history"].get<std::vector<double>>();
+  std::size_t first = 0;
+  while (first < history.size() && history[first] == 0.0) ++first;
+  ASSERT_LT(first, history.size());
+  for (std::size_t i = first + 1; i < history.size(); ++i) {
+    EXPECT_GE(history[i], history[i - 1] - 1e-9) << "step " << i;
+  }
+  EXPECT_GT(history.back(), history[first] + 0.05);
+}
+
+INSTANTIATE_TEST_SUITE_P(FourHands, ControllerRing,
+                         ::testing::Values(std::make_pair("sdh", 0.85), std::make_pair("dlr", 0.85),
+                                           std::make_pair("icub", 0.75),
+                                           std::make_pair("armar3", 0.8)),
+                         [](const auto& info) { return info.param.first; });
+
+// A scenario file next to the committed ones' shapes, written into a temporary folder.
+std::string write_ring_scenario(const TempDir& dir, const std::string& name,
+                                const std::string& position, const std::string& extra = "") {
+  return dir.write(name,
+                   "robot: kr5_sdh\n"
+                   "start: [0, -1.5707963, 1.5707963, 0, 1.5707963, 0]\n"
+                   "object:\n"
+                   "  shape: {type: torus, major_radius: 0.1, minor_radius: 0.012}\n"
+                   "  pose: {position: [" +
+                       position + "], rpy: [0, 1.5707963, 0]}\n" + extra);
+}
+
+TEST(ControllerOnly, UnreachableTargetEndsWithNoProgress) {
+  TempDir dir;
+  const auto path = write_ring_scenario(dir, "far.yaml", "2.5, 0, 0.3");
+  const CliResult r =
+      run_cli({"run", path, "--controller-only", "--out", dir.file("out"), "--json"});
+  EXPECT_EQ(r.exit_code, 1) << r.err;
+  const json s = r.json();
+  EXPECT_FALSE(s["success"].get<bool>());
+  EXPECT_NE(s["reason"].get<std::string>().find("no progress"), std::string::npos) << s["reason"];
+}
+
+TEST(ControllerOnly, SameSeedSameResultFile) {
+  TempDir dir;
+  for (const char* out : {"a", "b"}) {
+    ASSERT_EQ(run_cli({"run", scenario("controller_ring_sdh"), "--controller-only", "--no-pictures",
+                       "--out", dir.file(out)})
+                  .exit_code,
+              0);
+  }
+  EXPECT_EQ(slurp(dir.file("a/result.json")), slurp(dir.file("b/result.json")));
+}
+
+TEST(Scenario, MalformedScenariosAreExitTwo) {
+  TempDir dir;
+  const std::vector<std::pair<std::string, std::string>> bad = {
+      {"empty.yaml", ""},
+      {"not_yaml.yaml", "robot: [unclosed\n"},
+      {"list.yaml", "- a\n- b\n"},
+      {"no_robot.yaml", "object: {shape: {type: torus}}\n"},
+      {"bad_robot.yaml", "robot: kr5_nohand\nobject: {shape: {type: torus}}\n"},
+      {"typo.yaml", "robot: kr5_sdh\nobject: {shape: {type: torus}}\nplaner: {max_cycles: 3}\n"},
+      {"two_sources.yaml", "robot: kr5_sdh\nobject: {shape: {type: torus}, cloud: x.pcd}\n"},
+      {"bad_shape.yaml", "robot: kr5_sdh\nobject: {shape: {type: teapot}}\n"},
+      {"bad_number.yaml", "robot: kr5_sdh\nobject: {shape: {type: torus}}\nseed: many\n"},
+      {"nan.yaml",
+       "robot: kr5_sdh\nobject: {shape: {type: torus}, pose: {position: [.nan, 0, 0]}}\n"},
+      {"missing_depth.yaml",
+       "robot: kr5_sdh\nobject: {depth: [{image: no.png, camera: no.yaml}]}\n"},
+      {"bad_start.yaml", "robot: kr5_sdh\nstart: [0, 9, 0]\nobject: {shape: {type: torus}}\n"},
+  };
+  for (const auto& [name, text] : bad) {
+    const CliResult r = run_cli({"run", dir.write(name, text), "--out", dir.file("out")});
+    EXPECT_EQ(r.exit_code, 2) << name << ": " << r.out << r.err;
+    EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << name << ": " << r.err;
+  }
+  EXPECT_EQ(run_cli({"run", dir.file("missing.yaml")}).exit_code, 2);
+  // A start pose inside the object is malformed input too.
+  const auto inside = write_ring_scenario(dir, "inside.yaml", "0.48, 0, 0.50");
+  const CliResult r = run_cli({"run", inside, "--controller-only", "--out", dir.file("out")});
+  EXPECT_EQ(r.exit_code, 2) << r.err;
+  EXPECT_NE(r.err.find("in collision"), std::string::npos) << r.err;
+}
+
+TEST(Scenario, NoClaspableLoopIsExitOne) {
+  TempDir dir;
+  const auto path = dir.write("sphere.yaml",
+                              "robot: kr5_sdh\n"
+                              "object: {shape: {type: sphere, radius: 0.1}, "
+                              "pose: {position: [0.6, 0, 0.3]}}\n");
+  const CliResult r = run_cli({"run", path, "--out", dir.file("out"), "--json"});
+  EXPECT_EQ(r.exit_code, 1) << r.err;
+  EXPECT_NE(r.json()["reason"].get<std::string>().find("no loops"), std::string::npos);
+}
+
+// --- Planned clasps (TS-RRT issue) --------------------------------------------------------------
+
+// Checks a planned result: the path starts at the scenario's start, every segment is free at a
+// resolution finer than the planner's (0.02 rad), and the final pose ends the path.
+void expect_collision_free_path(const json& result) {
+  const robots::RobotModel model = robots::load_robot(result["robot"].get<std::string>());
+  robots::CollisionWorld world(model);
+  std::vector<Eigen::Vector3d> vertices;
+  for (const auto& v : result["object_mesh"]["vertices"]) {
+    vertices.emplace_back(v[0].get<double>(), v[1].get<double>(), v[2].get<double>());
+  }
+  std::vector<Eigen::Vector3i> triangles;
+  for (const auto& t : result["object_mesh"]["triangles"]) {
+    triangles.emplace_back(t[0].get<int>(), t[1].get<int>(), t[2].get<int>());
+  }
+  world.set_object(vertices, triangles);
+  for (const auto& b : result["environment"]["boxes"]) {
+    Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();
+    for (int r = 0; r < 3; ++r)
+      for (int c = 0; c < 3; ++c) pose.linear()(r, c) = b["rotation"][r][c].get<double>();
+    pose.translation() = vector_of(b["position"]);
+    world.add_box(pose, vector_of(b["size"]));
+  }
+  const auto& waypoints = result["waypoints"];
+  ASSERT_GE(waypoints.size(), 2u);
+  for (std::size_t i = 0; i + 1 < waypoints.size(); ++i) {
+    robots::CollisionReport report;
+    EXPECT_TRUE(
+        world.motion_free(vector_of(waypoints[i]), vector_of(waypoints[i + 1]), 0.005, &report))
+        << "segment " << i << ": " << report.first << " with " << report.second;
+  }
+}
+
+struct PlannedCase {
+  std::string scenario;
+  int seed;
+};
+void PrintTo(const PlannedCase& c, std::ostream* os) {
+  *os << c.scenario << " --seed " << c.seed;
+}
+
+class PlannedClasp : public ::testing::TestWithParam<PlannedCase> {};
+
+TEST_P(PlannedClasp, IsVerifiedAndCollisionFree) {
+  const PlannedCase c = GetParam();
+  TempDir dir;
+  const CliResult r = run_cli({"run", scenario(c.scenario), "--seed", std::to_string(c.seed),
+                               "--no-pictures", "--out", dir.file("out"), "--json"});
+  ASSERT_EQ(r.exit_code, 0) << r.out << r.err;
+  const json s = r.json();
+  EXPECT_TRUE(s["success"].get<bool>());
+  EXPECT_TRUE(s["verified"].get<bool>());
+  for (const char* key : {"cycles", "nodes", "seconds", "virtual_linking", "out"}) {
+    EXPECT_TRUE(s.contains(key)) << key;
+  }
+  const json result = read_json(dir.file("out/result.json"));
+  EXPECT_TRUE(result["verification"]["secure"].get<bool>());
+  EXPECT_EQ(result["verification"]["escaped_sequences"], 0);
+  expect_collision_free_path(result);
+}
+
+// Fixed seeds; measured success rates over more seeds are in the issue notes and the README.
+INSTANTIATE_TEST_SUITE_P(
+    BoxWithRingHandle, PlannedClasp,
+    ::testing::Values(PlannedCase{"purse_1_sdh", 1}, PlannedCase{"purse_1_sdh", 2},
+                      PlannedCase{"purse_1_dlr", 2}, PlannedCase{"purse_1_dlr", 7},
+                      PlannedCase{"purse_1_icub", 1}, PlannedCase{"purse_1_icub", 3},
+                      PlannedCase{"purse_1_armar3", 1}, PlannedCase{"purse_1_armar3", 3}),
+    [](const auto& info) {
+      return info.param.scenario + "_seed" + std::to_string(info.param.seed);
+    });
+
+INSTANTIATE_TEST_SUITE_P(ObstructedLoop, PlannedClasp,
+                         ::testing::Values(PlannedCase{"obstructed_ring_sdh", 1},
+                                           PlannedCase{"obstructed_ring_dlr", 1}),
+                         [](const auto& info) {
+                           return info.param.scenario + "_seed" + std::to_string(info.param.seed);
+                         });
+
+// One planned purse clasp shared by the tests below.
+class PlannedPurse : public ::testing::Test {
+ protected:
+  static void SetUpTestSuite() {
+    dir_ = new TempDir();
+    run_ = new CliResult(run_cli({"run", scenario("purse_1_armar3"), "--seed", "1", "--no-pictures",
+                                  "--out", dir_->file("a")}));
+  }
+  static void TearDownTestSuite() {
+    delete run_;
+    delete dir_;
+  }
+  static json result() { return read_json(dir_->file("a/result.json")); }
+  static inline TempDir* dir_ = nullptr;
+  static inline CliResult* run_ = nullptr;
+};
+
+TEST_F(PlannedPurse, SameSeedSameResultFile) {
+  ASSERT_EQ(run_->exit_code, 0) << run_->err;
+  const CliResult again = run_cli({"run", scenario("purse_1_armar3"), "--seed", "1",
+                                   "--no-pictures", "--out", dir_->file("b")});
+  ASSERT_EQ(again.exit_code, 0);
+  EXPECT_EQ(slurp(dir_->file("a/result.json")), slurp(dir_->file("b/result.json")));
+}
+
+TEST_F(PlannedPurse, VerifyPassesTheFinalPoseAndFailsWeakOnes) {
+  ASSERT_EQ(run_->exit_code, 0) << run_->err;
+  const CliResult v = run_cli({"verify", dir_->file("a/result.json"), "--json"});
+  ASSERT_EQ(v.exit_code, 0) << v.err;
+  const json j = v.json();
+  EXPECT_TRUE(j["secure"].get<bool>());
+  for (const char* key :
+       {"sequences", "escaped_sequences", "min_open_linking", "max_open_linking"}) {
+    EXPECT_TRUE(j.contains(key)) << key;
+  }
+  EXPECT_EQ(j["sequences"], 10);
+  EXPECT_GT(j["min_open_linking"].get<double>(), 0.3);
+
+  // The same pose with the hand open: the object slides out.
+  const robots::RobotModel model = robots::load_robot("kr5_armar3");
+  json open = result();
+  Eigen::VectorXd q = vector_of(open["final_q"]);
+  q = model.open_hand(q);
+  open["final_q"] = std::vector<double>(q.data(), q.data() + q.size());
+  const CliResult o = run_cli({"verify", dir_->write("open.json", open.dump()), "--json"});
+  EXPECT_EQ(o.exit_code, 1) << o.out << o.err;
+  EXPECT_FALSE(o.json()["start_in_collision"].get<bool>());
+  EXPECT_GT(o.json()["escaped_sequences"].get<int>(), 0);
+
+  // The closed hand holding the loop only at its fingertips: the object moved along the hand's
+  // approach direction until just the tips reach it (the first such offset that is collision-free).
+  robots::RobotData data(model);
+  robots::forward_kinematics(model, vector_of(result()["final_q"]), data);
+  const Eigen::Vector3d forward = robots::vector_direction(data, model.v_fwd);
+  bool tested = false;
+  for (double offset = 0.03; offset <= 0.12 && !tested; offset += 0.01) {
+    json tip = result();
+    for (auto& p : tip["loop"]) {
+      for (int k = 0; k < 3; ++k) p[k] = p[k].get<double>() + offset * forward[k];
+    }
+    for (auto& p : tip["object_mesh"]["vertices"]) {
+      for (int k = 0; k < 3; ++k) p[k] = p[k].get<double>() + offset * forward[k];
+    }
+    const CliResult t = run_cli({"verify", dir_->write("tip.json", tip.dump()), "--json"});
+    if (t.json()["start_in_collision"].get<bool>()) continue;
+    tested = true;
+    EXPECT_EQ(t.exit_code, 1) << "offset " << offset << ": " << t.out;
+    EXPECT_GT(t.json()["escaped_sequences"].get<int>(), 0);
+  }
+  EXPECT_TRUE(tested) << "no collision-free fingertip pose found";
+}
+
+TEST(Planner, TimeLimitIsRespectedWithinTenPercent) {
+  TempDir dir;
+  // The iCub does not solve the obstructed ring (see the notes): the limit ends the search.
+  const CliResult r = run_cli({"run", scenario("obstructed_ring_icub"), "--time-limit", "3",
+                               "--no-pictures", "--out", dir.file("out"), "--json"});
+  EXPECT_EQ(r.exit_code, 1) << r.err;
+  const json s = r.json();
+  EXPECT_LE(s["seconds"].get<double>(), 3.3);
+  EXPECT_GE(s["seconds"].get<double>(), 3.0);
+  EXPECT_NE(s["reason"].get<std::string>().find("time limit"), std::string::npos);
+}
+
+TEST(Planner, UnreachableLoopIsExitOneWithAReason) {
+  TempDir dir;
+  const auto path = write_ring_scenario(dir, "far.yaml", "2.5, 0, 0.3",
+                                        "planner: {pre_expansions: 20, max_cycles: 30}\n");
+  const CliResult r = run_cli({"run", path, "--out", dir.file("out"), "--json"});
+  EXPECT_EQ(r.exit_code, 1) << r.err;
+  EXPECT_NE(r.json()["reason"].get<std::string>().find("no clasp found"), std::string::npos);
+  EXPECT_TRUE(std::filesystem::exists(dir.file("out/result.json")));
+  EXPECT_TRUE(std::filesystem::exists(dir.file("out/tree.png")));
+}
+
+TEST(Verify, BadResultFilesAreExitTwo) {
+  TempDir dir;
+  const std::vector<std::pair<std::string, std::string>> bad = {
+      {"empty.json", ""},
+      {"text.json", "not json"},
+      {"array.json", "[1, 2]"},
+      {"no_robot.json", "{\"final_q\": []}"},
+      {"bad_robot.json",
+       "{\"robot\": \"kr5_x\", \"final_q\": [], \"loop\": [], \"object_mesh\": {}}"},
+      {"short_q.json", "{\"robot\": \"kr5_sdh\", \"final_q\": [0, 1]}"},
+  };
+  for (const auto& [name, text] : bad) {
+    const CliResult r = run_cli({"verify", dir.write(name, text)});
+    EXPECT_EQ(r.exit_code, 2) << name << ": " << r.out << r.err;
+    EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << name << ": " << r.err;
+  }
+  EXPECT_EQ(run_cli({"verify", dir.file("missing.json")}).exit_code, 2);
+}
+
+TEST(Demo, RunsTheEmbeddedScenarioToAVerifiedClasp) {
+  TempDir dir;
+  const CliResult r = run_cli({"demo", "--out", dir.file("demo"), "--json"});
+  ASSERT_EQ(r.exit_code, 0) << r.out << r.err;
+  EXPECT_TRUE(r.json()["verified"].get<bool>());
+  for (const char* file : {"result.json", "timing.json", "clasp_front.png", "clasp_side.png",
+                           "tree.png", "poses.png", "depth_0.png", "depth_0.yaml"}) {
+    EXPECT_TRUE(std::filesystem::exists(dir.file(std::string("demo/") + file))) << file;
+  }
+}
+
+}  // namespace
+}  // namespace claspplan::test
