@@ -29,20 +29,10 @@ int run_demo(DemoOptions& o) {
     print_json(outcome.summary);
     return outcome.exit_code;
   }
-  const auto& s = outcome.summary;
-  if (s.value("verified", false)) {
-    std::printf(
-        "verified clasp: found after %d cycles (%d tree nodes) in %.2f s of planning; "
-        "virtual linking %.3f\n",
-        s.value("cycles", 0), s.value("nodes", 0), s.value("seconds", 0.0),
-        s.value("virtual_linking", 0.0));
-  } else {
-    std::printf("no verified clasp: %s\n", s.value("reason", std::string()).c_str());
-  }
+  print_run_summary(outcome.summary, /*controller_only=*/false);
   std::printf(
-      "look at %s/clasp_front.png, clasp_side.png, tree.png and poses.png; the plan is in "
-      "result.json, the depth images in depth_*.png\n",
-      o.run.out_dir.c_str());
+      "look at clasp_front.png, clasp_side.png, tree.png and poses.png there; the depth "
+      "images it planned from are depth_*.png\n");
   return outcome.exit_code;
 }
 

@@ -17,25 +17,6 @@ struct RunCommandOptions {
   bool json = false;
 };
 
-void print_summary(const nlohmann::json& s, bool controller_only) {
-  if (controller_only) {
-    std::printf("%s: %s after %d steps, virtual linking %.3f\n",
-                s["success"].get<bool>() ? "clasped" : "not clasped",
-                s["reason"].get<std::string>().c_str(), s.value("steps", 0),
-                s.value("virtual_linking", 0.0));
-  } else if (s.value("verified", false)) {
-    std::printf(
-        "verified clasp: %d cycles after pre-expansion, %d nodes, %.2f s planning, "
-        "virtual linking %.3f\n",
-        s.value("cycles", 0), s.value("nodes", 0), s.value("seconds", 0.0),
-        s.value("virtual_linking", 0.0));
-  } else {
-    std::printf("no verified clasp: %s\n", s["reason"].get<std::string>().c_str());
-  }
-  std::printf("result: %s/result.json, timing.json and pictures (*.png)\n",
-              s["out"].get<std::string>().c_str());
-}
-
 }  // namespace
 
 void add_run_command(CLI::App& app, Action& action) {
@@ -65,7 +46,7 @@ void add_run_command(CLI::App& app, Action& action) {
       if (o->json) {
         print_json(outcome.summary);
       } else {
-        print_summary(outcome.summary, o->run.controller_only);
+        print_run_summary(outcome.summary, o->run.controller_only);
       }
       return outcome.exit_code;
     };

@@ -1,4 +1,5 @@
-// Curve files: one `x y z` per line (metres), `#` starts a comment, blank lines are ignored.
+// Curve files: one `x y z` per line (metres; the .xyz format: `#` comments, blank lines and
+// further columns ignored).
 // A closed curve's last point joins its first; a repeated first point at the end is dropped.
 #pragma once
 

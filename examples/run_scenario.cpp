@@ -1,6 +1,7 @@
 #include "examples/run_scenario.hpp"
 
 #include <chrono>
+#include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <limits>
@@ -346,6 +347,25 @@ RunOutcome run_scenario(const Scenario& scenario, const RunOptions& options) {
     timing["pictures"] = since(t);
   }
   return finish(m.success ? kOk : kNoAnswer, m.summary);
+}
+
+void print_run_summary(const json& s, bool controller_only) {
+  const std::string reason = s.value("reason", std::string());
+  if (controller_only) {
+    std::printf("%s: %s after %d steps, virtual linking %.3f\n",
+                s.value("success", false) ? "clasped" : "not clasped", reason.c_str(),
+                s.value("steps", 0), s.value("virtual_linking", 0.0));
+  } else if (s.value("verified", false)) {
+    std::printf(
+        "verified clasp: %d cycles after pre-expansion, %d nodes, %.2f s planning "
+        "(the clasp checks included), virtual linking %.3f\n",
+        s.value("cycles", 0), s.value("nodes", 0), s.value("seconds", 0.0),
+        s.value("virtual_linking", 0.0));
+  } else {
+    std::printf("no verified clasp: %s\n", reason.c_str());
+  }
+  std::printf("result: %s/result.json, timing.json and pictures (*.png)\n",
+              s.value("out", std::string()).c_str());
 }
 
 }  // namespace claspplan::cli

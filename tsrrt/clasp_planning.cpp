@@ -101,18 +101,21 @@ void loop_tube(const servo::Points& loop, double radius, std::vector<Eigen::Vect
   constexpr int kSides = 6;
   const int n = static_cast<int>(loop.size());
   const int first = static_cast<int>(vertices.size());
+  // Rings of vertices around each loop point, in the plane normal to the mean of its two
+  // segments; the ring's frame is carried along the loop (parallel transport), so neighbouring
+  // rings line up and the band between them does not twist.
+  Eigen::Vector3d u = Eigen::Vector3d::Zero();
   for (int i = 0; i < n; ++i) {
-    // A ring of vertices around loop[i], in the plane normal to the mean of its two segments.
     const Eigen::Vector3d tangent = (loop[(i + 1) % n] - loop[(i + n - 1) % n]).normalized();
-    Eigen::Vector3d u = tangent.unitOrthogonal();
+    u = (i == 0) ? tangent.unitOrthogonal() : (u - tangent * tangent.dot(u));
+    if (u.norm() < 1e-9) u = tangent.unitOrthogonal();  // a hairpin turn
+    u.normalize();
     const Eigen::Vector3d v = tangent.cross(u);
     for (int k = 0; k < kSides; ++k) {
       const double a = 2.0 * 3.14159265358979323846 * k / kSides;
       vertices.push_back(loop[i] + radius * (std::cos(a) * u + std::sin(a) * v));
     }
   }
-  // unitOrthogonal() may flip between neighbours; joining ring k to ring k of the next vertex
-  // still covers the tube's segment, which is all a collision test needs.
   for (int i = 0; i < n; ++i) {
     const int a = first + i * kSides, b = first + ((i + 1) % n) * kSides;
     for (int k = 0; k < kSides; ++k) {
