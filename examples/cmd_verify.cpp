@@ -5,6 +5,7 @@
 #include <fstream>
 
 #include "examples/command.hpp"
+#include "examples/run_scenario.hpp"
 #include "robots/robot_model.hpp"
 #include "tsrrt/clasp_planning.hpp"
 
@@ -98,16 +99,10 @@ int run_verify(VerifyOptions o) {
   const tsrrt::SecureClaspReport v =
       tsrrt::check_secure_clasp(model, vertices, triangles, q, loop, o.check);
   if (o.json) {
-    print_json({{"secure", v.secure},
-                {"start_in_collision", v.start_in_collision},
-                {"sequences", v.sequences},
-                {"escaped_sequences", v.escaped_sequences},
-                {"min_open_linking", v.min_open_linking},
-                {"max_open_linking", v.max_open_linking},
-                {"min_virtual_linking", v.min_virtual_linking},
-                {"max_virtual_linking", v.max_virtual_linking},
-                {"open_linking", v.open_linking},
-                {"virtual_linking", v.virtual_linking}});
+    nlohmann::json j = verification_json(v);
+    j["open_linking"] = v.open_linking;
+    j["virtual_linking"] = v.virtual_linking;
+    print_json(j);
   } else if (v.start_in_collision) {
     std::printf("not secure: the hand already touches the object in the final pose\n");
   } else {

@@ -112,18 +112,6 @@ json scene_json(const SceneGeometry& scene) {
       {"object_mesh", {{"vertices", to_json(scene.object.vertices)}, {"triangles", triangles}}}};
 }
 
-json verification_json(const tsrrt::SecureClaspReport& v) {
-  return {{"secure", v.secure},
-          {"start_in_collision", v.start_in_collision},
-          {"timed_out", v.timed_out},
-          {"sequences", v.sequences},
-          {"escaped_sequences", v.escaped_sequences},
-          {"min_open_linking", v.min_open_linking},
-          {"max_open_linking", v.max_open_linking},
-          {"min_virtual_linking", v.min_virtual_linking},
-          {"max_virtual_linking", v.max_virtual_linking}};
-}
-
 // What the controller-only or the planned phase produced.
 struct Motion {
   std::vector<Eigen::VectorXd> path;  // start to final pose; empty when none was found
@@ -347,6 +335,18 @@ RunOutcome run_scenario(const Scenario& scenario, const RunOptions& options) {
     timing["pictures"] = since(t);
   }
   return finish(m.success ? kOk : kNoAnswer, m.summary);
+}
+
+json verification_json(const tsrrt::SecureClaspReport& v) {
+  return {{"secure", v.secure},
+          {"start_in_collision", v.start_in_collision},
+          {"timed_out", v.timed_out},
+          {"sequences", v.sequences},
+          {"escaped_sequences", v.escaped_sequences},
+          {"min_open_linking", v.min_open_linking},
+          {"max_open_linking", v.max_open_linking},
+          {"min_virtual_linking", v.min_virtual_linking},
+          {"max_virtual_linking", v.max_virtual_linking}};
 }
 
 void print_run_summary(const json& s, bool controller_only) {

@@ -30,6 +30,9 @@ struct RunOutcome {
 /// Throws std::invalid_argument for malformed input (a start pose in collision included).
 RunOutcome run_scenario(const Scenario& scenario, const RunOptions& options);
 
+/// The secure-clasp check's outcome as JSON (result.json's `verification`, `verify --json`).
+nlohmann::json verification_json(const tsrrt::SecureClaspReport& report);
+
 /// The human summary of a run's outcome (its --json object), for `run` and `demo`.
 void print_run_summary(const nlohmann::json& summary, bool controller_only);
 
