@@ -128,6 +128,23 @@ class Reader {
     return T;
   }
 
+  /// A list of maps under `key`, each read with its index in messages; with `required` the list
+  /// must exist and be non-empty (`what` describes an entry).
+  std::vector<Reader> maps(const std::string& key, const std::string& what, bool required) const {
+    std::vector<Reader> out;
+    if (!has(key)) {
+      if (required) fail(key, "expected a list of " + what);
+      return out;
+    }
+    const YAML::Node list = node_[key];
+    if (!list.IsSequence() || (required && list.size() == 0))
+      fail(key, "expected a list of " + what);
+    for (std::size_t i = 0; i < list.size(); ++i) {
+      out.emplace_back(list[i], where_ + "." + key + "[" + std::to_string(i) + "]");
+    }
+    return out;
+  }
+
   /// A list of [x, y, z].
   std::vector<Eigen::Vector3d> vectors(const std::string& key) const {
     std::vector<Eigen::Vector3d> out;
@@ -159,11 +176,7 @@ void read_object(const Reader& r, const fs::path& dir, ObjectSpec& o) {
   int sources = 0;
   if (r.has("depth")) {
     ++sources;
-    const YAML::Node list = r["depth"];
-    if (!list.IsSequence() || list.size() == 0)
-      r.fail("depth", "expected a list of {image, camera}");
-    for (std::size_t i = 0; i < list.size(); ++i) {
-      const Reader v(list[i], r.where() + ".depth[" + std::to_string(i) + "]");
+    for (const Reader& v : r.maps("depth", "{image, camera}", true)) {
       v.only({"image", "camera"});
       if (!v.has("image") || !v.has("camera")) v.fail("", "needs both image and camera");
       o.depth.emplace_back(resolve(dir, v.text("image")), resolve(dir, v.text("camera")));
@@ -206,11 +219,7 @@ void read_object(const Reader& r, const fs::path& dir, ObjectSpec& o) {
   o.views = r.vectors("views");
   if (r.has("cameras")) {
     if (!o.mesh.empty() || o.shape) {
-      const YAML::Node list = r["cameras"];
-      if (!list.IsSequence() || list.size() == 0)
-        r.fail("cameras", "expected a list of {position, target}");
-      for (std::size_t i = 0; i < list.size(); ++i) {
-        const Reader c(list[i], r.where() + ".cameras[" + std::to_string(i) + "]");
+      for (const Reader& c : r.maps("cameras", "{position, target}", true)) {
         c.only({"position", "target"});
         if (!c.has("position") || !c.has("target")) c.fail("", "needs position and target");
         const Eigen::Vector3d position = c.vector3("position", Eigen::Vector3d::Zero());
@@ -275,10 +284,7 @@ Scenario load_scenario_text(const std::string& text, const std::string& path,
   if (r.has("environment")) {
     const Reader env = r.child("environment");
     env.only({"boxes"});
-    const YAML::Node boxes = env["boxes"];
-    if (boxes && !boxes.IsSequence()) env.fail("boxes", "expected a list");
-    for (std::size_t i = 0; boxes && i < boxes.size(); ++i) {
-      const Reader b(boxes[i], env.where() + ".boxes[" + std::to_string(i) + "]");
+    for (const Reader& b : env.maps("boxes", "{size, position, rpy}", false)) {
       b.only({"size", "position", "rpy"});
       EnvironmentBox box;
       box.size = b.vector3("size", Eigen::Vector3d::Zero());
