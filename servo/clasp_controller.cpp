@@ -25,12 +25,11 @@ ClaspController::ClaspController(const robots::RobotModel& model, Points loop,
                                  std::vector<ClaspTarget> targets,
                                  const ControllerParameters& parameters)
     : model_(model),
-      targets_(targets),
       p_(parameters),
       data_(model),
       alignment_(std::move(targets), parameters.hold_distance),
       linking_(std::move(loop)) {
-  if (targets_.empty())
+  if (alignment_.targets().empty())
     throw std::invalid_argument("the controller needs at least one clasp target");
   if (model.curves.empty())
     throw std::invalid_argument(model.name + ": the hand has no finger curves");

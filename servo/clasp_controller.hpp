@@ -63,7 +63,7 @@ class ClaspController {
   /// What the last step() decided.
   const PrioritizedStep& last_step() const { return last_; }
   const robots::RobotModel& model() const { return model_; }
-  const std::vector<ClaspTarget>& targets() const { return targets_; }
+  const std::vector<ClaspTarget>& targets() const { return alignment_.targets(); }
   const Points& loop() const { return linking_.loop(); }
   /// The features at the last project() or step() configuration (ViSP features).
   const PositionFeature& position_feature() const { return position_; }
@@ -76,7 +76,6 @@ class ClaspController {
   void update(const Eigen::VectorXd& q);
 
   const robots::RobotModel& model_;
-  std::vector<ClaspTarget> targets_;
   ControllerParameters p_;
   robots::RobotData data_;
   robots::FingerCurvesData curves_;

@@ -71,6 +71,7 @@ class AlignmentFeature final : public JointSpaceFeature {
   /// Starts a new trajectory: the kept direction is dropped.
   void forget_direction() { has_direction_ = false; }
   int nearest_target() const { return nearest_; }
+  const std::vector<ClaspTarget>& targets() const { return targets_; }
   vpBasicFeature* duplicate() const override { return new AlignmentFeature(*this); }
 
  private:
