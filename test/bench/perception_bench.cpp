@@ -10,6 +10,8 @@
 #include "examples/objects.hpp"
 #include "perception/cloud_filters.hpp"
 #include "perception/complex.hpp"
+#include "perception/depth_render.hpp"
+#include "perception/depth_surface.hpp"
 #include "perception/homology.hpp"
 #include "perception/pipeline.hpp"
 
@@ -147,6 +149,46 @@ void BM_FarthestPointSampling(benchmark::State& state) {
         farthest_point_indices(dense, static_cast<int>(state.range(0)), 1).data());
 }
 BENCHMARK(BM_FarthestPointSampling)->Arg(2000)->Arg(10000)->Unit(benchmark::kMillisecond);
+
+// The seen-surface collision mesh (depth_surface.hpp) of two 640x480 views with 1 mm noise, stride
+// 2, the floor removed by its plane (5 mm margin). Argument: 0 = the upright ring of the tests
+// (R = 10 cm, r = 1.2 cm, at x = 0.55 m), 1 = the purse on its table (the example depth files).
+void BM_DepthSurfaceMesh(benchmark::State& state) {
+  TriangleMesh scene;
+  std::vector<CameraModel> cams;
+  if (state.range(0) == 0) {
+    const Eigen::Vector3d centre(0.55, 0.0, 0.112);
+    Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();
+    pose.translation() = centre;
+    pose.linear() =
+        Eigen::AngleAxisd(1.5707963267948966, Eigen::Vector3d::UnitX()).toRotationMatrix();
+    scene = objects::torus_mesh(0.10, 0.012, pose);
+    append_mesh(scene, objects::ground_plane(1.2, 0.0, {0.55, 0.0}));
+    cams = {objects::kinect_camera({0.25, -0.55, 0.50}, centre),
+            objects::kinect_camera({0.85, 0.60, 0.45}, centre)};
+  } else {
+    scene = objects::purse();
+    append_mesh(scene, objects::ground_plane(1.2));
+    cams = objects::purse_cameras(2);
+  }
+  std::vector<DepthView> views;
+  for (size_t i = 0; i < cams.size(); ++i) {
+    DepthNoise noise;
+    noise.sigma = 0.001;
+    noise.seed = 1 + i;
+    views.push_back({cams[i], render_depth(scene, cams[i], noise)});
+  }
+  DepthSurfaceOptions o;
+  o.support_plane = Eigen::Vector4d(0, 0, 1, 0);
+  TriangleMesh m;
+  for (auto _ : state) {
+    m = depth_surface_mesh(views, o);
+    benchmark::DoNotOptimize(m.triangles.data());
+  }
+  state.counters["triangles"] = static_cast<double>(m.triangles.size());
+  state.counters["vertices"] = static_cast<double>(m.vertices.size());
+}
+BENCHMARK(BM_DepthSurfaceMesh)->Arg(0)->Arg(1)->Unit(benchmark::kMillisecond);
 
 }  // namespace
 }  // namespace claspplan::perception
