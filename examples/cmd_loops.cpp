@@ -1,22 +1,25 @@
 // `claspplan loops INPUT... [--camera CAM]... [--points N] [--d METRES] [--min-hole METRES]
-//  [--seed N] [--view X,Y,Z]... [--targets K] [--png FILE] [--json]`: perception only (paper
-// Sec. IV-A): the object's loops, ranked, and the clasp targets on the best one.
+//  [--seed N] [--view X,Y,Z]... [--targets K] [--robot NAME] [--png FILE] [--json]`: perception
+// only (paper Sec. IV-A): the object's loops, ranked (for a hand with --robot), and the clasp
+// targets on the best one.
 // Also the hidden `claspplan render-example DIR`, which writes the purse's example depth files.
 #include <cmath>
 #include <cstdio>
+#include <optional>
 #include <sstream>
 
 #include "examples/command.hpp"
 #include "examples/objects.hpp"
 #include "perception/drawing.hpp"
 #include "perception/pipeline.hpp"
+#include "robots/hand_size.hpp"
 
 namespace claspplan::cli {
 namespace {
 
 struct LoopsOptions {
   std::vector<std::string> inputs, cameras, views;
-  std::string crop, png;
+  std::string crop, png, robot;
   int points = 2000;
   double d = 0.0;
   double min_hole = 0.03;
@@ -47,6 +50,13 @@ nlohmann::json vec(const Eigen::Vector3d& p) {
   return {p.x(), p.y(), p.z()};
 }
 
+// Bar thickness along the loop; null where the material is a wall or body (no bar).
+nlohmann::json bar_profile(const perception::Loop& l) {
+  nlohmann::json a = nlohmann::json::array();
+  for (double b : l.bar_profile) a.push_back(std::isfinite(b) ? nlohmann::json(b) : nullptr);
+  return a;
+}
+
 int run_loops(const LoopsOptions& o) {
   using namespace perception;
   std::vector<Eigen::Vector3d> views;
@@ -69,6 +79,12 @@ int run_loops(const LoopsOptions& o) {
     po.workspace =
         Eigen::AlignedBox3d(Eigen::Vector3d(c[0], c[1], c[2]), Eigen::Vector3d(c[3], c[4], c[5]));
   }
+  std::optional<robots::HandSize> hand;
+  if (!o.robot.empty()) {
+    hand = robots::hand_size(robots::load_robot(o.robot));
+    po.finger_thickness = hand->finger_thickness;
+    po.closed_aperture = hand->closed_aperture;
+  }
   po.progress = [](const std::string& m) { progress(m); };
   const PerceptionInputs inputs = load_inputs(o.inputs, o.cameras, views);
   const ObjectModel model = build_object_model(inputs, po);
@@ -82,20 +98,29 @@ int run_loops(const LoopsOptions& o) {
     for (const auto& l : model.loops) {
       nlohmann::json pts = nlohmann::json::array();
       for (const auto& p : l.points) pts.push_back(vec(p));
-      loops.push_back({{"length", l.length},
-                       {"rank", l.rank},
-                       {"claspable", l.claspable},
-                       {"reason", l.reason},
-                       {"hole_width", l.hole_width},
-                       {"centre", vec(l.centre)},
-                       {"normal", vec(l.normal)},
-                       {"points", pts}});
+      loops.push_back(
+          {{"length", l.length},
+           {"rank", l.rank},
+           {"claspable", l.claspable},
+           {"verdict", l.verdict},
+           {"reason", l.reason},
+           {"hole_width", l.hole_width},
+           {"bar_thickness", std::isfinite(l.bar_thickness) ? nlohmann::json(l.bar_thickness)
+                                                            : nlohmann::json(nullptr)},
+           {"fit", l.fit},
+           {"bar_profile", bar_profile(l)},
+           {"centre", vec(l.centre)},
+           {"normal", vec(l.normal)},
+           {"points", pts}});
     }
     nlohmann::json targets = nlohmann::json::array();
     for (const auto& t : model.targets)
       targets.push_back({{"p", vec(t.p)}, {"tangent", vec(t.tangent)}});
     const auto& tm = model.timings;
     nlohmann::json out = {{"beta1", model.beta1},
+                          {"stable_loops", static_cast<int>(model.loops.size())},
+                          {"unstable_loops", model.unstable_loops},
+                          {"persistence_d", model.persistence_d},
                           {"d", model.d},
                           {"d_rule", model.d_rule},
                           {"mean_spacing", model.mean_spacing},
@@ -112,11 +137,24 @@ int run_loops(const LoopsOptions& o) {
                             {"homology", tm.homology},
                             {"ranking", tm.ranking}}}};
     if (!o.png.empty()) out["png"] = o.png;
+    if (hand) {
+      out["hand"] = {{"robot", o.robot},
+                     {"finger_thickness", hand->finger_thickness},
+                     {"closed_aperture", hand->closed_aperture}};
+    }
     print_json(out);
     return kOk;
   }
   std::printf("beta1 = %d   d = %.4f m   (%s)\n", model.beta1, model.d, model.d_rule.c_str());
   std::printf("points: %zu (from %d input points)\n", model.cloud.size(), model.input_points);
+  if (model.unstable_loops > 0) {
+    std::printf("stable loops: %zu (%d more fill in by d' = %.4f m: sampling gaps, dropped)\n",
+                model.loops.size(), model.unstable_loops, model.persistence_d);
+  }
+  if (hand) {
+    std::printf("hand %s: fingers %.4f m thick, closed aperture %.4f m\n", o.robot.c_str(),
+                hand->finger_thickness, hand->closed_aperture);
+  }
   if (model.loops.empty()) {
     std::printf("no loops: K_d has no hole at this d (beta1 = 0), nothing to clasp\n");
   }
@@ -170,6 +208,9 @@ void add_loops_command(CLI::App& app, Action& action) {
   cmd->add_option("--crop", o->crop,
                   "XMIN,YMIN,ZMIN,XMAX,YMAX,ZMAX: workspace box for depth points (world frame)");
   cmd->add_flag("--keep-plane", o->keep_plane, "do not remove the supporting plane from depth");
+  cmd->add_option("--robot", o->robot,
+                  "rank the loops for this robot's hand (built-in name or hand-description "
+                  "file): holes its fingers pass, bars its closed hand encloses");
   cmd->add_option("--png", o->png, "draw K_d with its loops (best in red) to this PNG");
   cmd->add_flag("--json", o->json, "print one JSON object instead of the summary");
   cmd->callback([o, &action] { action = [o] { return run_loops(*o); }; });

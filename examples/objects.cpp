@@ -295,6 +295,39 @@ Eigen::Vector3d purse_handle_centre(const Purse& p) {
   return {0, 0, p.body.z() + 0.5 * (p.handle_radius - p.handle_tube)};
 }
 
+TriangleMesh container(const Container& c) {
+  if (!(c.radius > 2 * c.wall) || !(c.height > 2 * c.wall) || !(c.wall > 0) || !(c.cell > 0) ||
+      (c.handle_radius > 0 && !(c.handle_radius > c.handle_tube && c.handle_tube > 0)) ||
+      (c.handle_radius > 0 && c.handle_radius + c.handle_tube >= c.height / 2))
+    throw std::invalid_argument("container: bad parameters");
+  const Eigen::Vector3d up(0, 0, 1);
+  Sdf solid =
+      sdf::subtract(sdf::cylinder(Eigen::Vector3d::Zero(), c.height * up, c.radius),
+                    sdf::cylinder(c.wall * up, (c.height + c.wall) * up, c.radius - c.wall));
+  double reach = c.radius;
+  if (c.handle_radius > 0) {
+    // Half a torus on the +x side: its centre on the wall, its ends buried in the wall.
+    Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();
+    pose.translate(Eigen::Vector3d(c.radius - c.wall, 0, c.handle_height * c.height));
+    pose.rotate(Eigen::AngleAxisd(M_PI / 2, Eigen::Vector3d::UnitX()));
+    const Sdf ring = sdf::torus(pose, c.handle_radius, c.handle_tube);
+    const Sdf outside = [r = c.radius - c.wall](const Eigen::Vector3d& p) {
+      return std::hypot(p.x(), p.y()) < r ? r - std::hypot(p.x(), p.y()) : -1.0;
+    };
+    solid = sdf::smooth_unite(solid, sdf::intersect(ring, outside), 0.5 * c.handle_tube);
+    reach = c.radius + c.handle_radius + c.handle_tube;
+  }
+  const double pad = 2 * c.cell;
+  const Eigen::AlignedBox3d box(Eigen::Vector3d(-c.radius - pad, -c.radius - pad, -pad),
+                                Eigen::Vector3d(reach + pad, c.radius + pad, c.height + pad));
+  return mesh_from_sdf(solid, box, c.cell);
+}
+
+Eigen::Vector3d container_handle_centre(const Container& c) {
+  return {c.radius - c.wall + 0.5 * (c.handle_radius - c.handle_tube), 0,
+          c.handle_height * c.height};
+}
+
 TriangleMesh ground_plane(double size, double z, const Eigen::Vector2d& c) {
   TriangleMesh m;
   const double h = size / 2;

@@ -90,6 +90,22 @@ TriangleMesh purse(const Purse& p = {});
 /// The purse's handle hole: the top of the body, handle centre (for tests and scenarios).
 Eigen::Vector3d purse_handle_centre(const Purse& p = {});
 
+/// An open container standing on z = 0 (a cup, a mug, a jug): a round wall with a bottom, open
+/// at the top, and optionally a side handle (half a torus on the +x side, in the x-z plane). The
+/// mouth is no through-hole: as a solid, beta1 = 1 with a handle (its hole), 0 without.
+struct Container {
+  double radius = 0.045;  ///< outer radius of the wall
+  double height = 0.10;
+  double wall = 0.004;         ///< wall and bottom thickness
+  double handle_radius = 0.0;  ///< centre line of the handle's arch; 0 = no handle
+  double handle_tube = 0.008;  ///< radius of the handle's cross-section
+  double handle_height = 0.5;  ///< handle centre as a fraction of the height
+  double cell = 0.003;
+};
+TriangleMesh container(const Container& c);
+/// The handle's hole centre (for tests).
+Eigen::Vector3d container_handle_centre(const Container& c);
+
 /// A horizontal square (two triangles, facing +z), e.g. a table under the object.
 TriangleMesh ground_plane(double size, double z = 0.0,
                           const Eigen::Vector2d& centre = Eigen::Vector2d::Zero());

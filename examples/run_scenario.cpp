@@ -8,7 +8,9 @@
 
 #include "examples/command.hpp"
 #include "examples/result_pictures.hpp"
+#include "perception/depth_surface.hpp"
 #include "robots/collision_world.hpp"
+#include "robots/hand_size.hpp"
 #include "servo/controller_run.hpp"
 #include "tsrrt/clasp_planning.hpp"
 
@@ -77,20 +79,32 @@ void fit_sample_box(tsrrt::PlannerParameters& p, const perception::ObjectModel& 
   p.sample_max = box.max() + Eigen::Vector3d::Constant(0.3);
 }
 
-// The object's collision model everywhere (planning, closing, verification): the K_d triangles
-// and a thin tube along the clasped loop.
+// The object's collision model everywhere (planning, closing, verification): the surface the
+// depth cameras saw (K_d is for topology: its long triangles web across holes), else K_d's
+// triangles for clouds and whole-surface samples; and a thin tube along the clasped loop, so the
+// loop itself is always material.
 RenderMesh collision_mesh(const perception::ObjectModel& object, const perception::Loop& loop,
+                          const perception::PerceptionOptions& options,
                           const std::string& scenario_path) {
   RenderMesh mesh;
-  mesh.vertices = object.complex.points;
-  for (int i = 0; i < static_cast<int>(object.complex.triangles.size()); ++i) {
-    const auto v = object.complex.triangle_vertices(i);
-    mesh.triangles.emplace_back(v[0], v[1], v[2]);
+  if (!object.views.empty()) {
+    perception::DepthSurfaceOptions so;
+    so.workspace = options.workspace;
+    so.support_plane = object.support_plane;
+    const perception::TriangleMesh seen = perception::depth_surface_mesh(object.views, so);
+    mesh.vertices = seen.vertices;
+    for (const auto& t : seen.triangles) mesh.triangles.emplace_back(t[0], t[1], t[2]);
+  } else {
+    mesh.vertices = object.complex.points;
+    for (int i = 0; i < static_cast<int>(object.complex.triangles.size()); ++i) {
+      const auto v = object.complex.triangle_vertices(i);
+      mesh.triangles.emplace_back(v[0], v[1], v[2]);
+    }
   }
   if (mesh.triangles.empty()) {
     throw std::invalid_argument(scenario_path +
-                                ": the object's complex K_d has no triangles to collide with "
-                                "(raise perception.d or the point count)");
+                                ": the object has no surface to collide with (no depth surface "
+                                "and no K_d triangles: raise perception.d or the point count)");
   }
   tsrrt::loop_tube(loop.points, kLoopTubeRadius, mesh.vertices, mesh.triangles);
   return mesh;
@@ -243,6 +257,10 @@ RunOutcome run_scenario(const Scenario& scenario, const RunOptions& options) {
   if (options.time_limit) s.planning.planner.time_limit = *options.time_limit;
   const robots::RobotModel model = robots::load_robot(s.robot);
   const Eigen::VectorXd q_start = model.complete_q(s.start);
+  // Loops are chosen for this hand: holes its fingers pass, bars its closed hand encloses.
+  const robots::HandSize hand = robots::hand_size(model);
+  s.perception.finger_thickness = hand.finger_thickness;
+  s.perception.closed_aperture = hand.closed_aperture;
   json timing;
   json result = {{"scenario", s.path},
                  {"robot", s.robot},
@@ -274,6 +292,11 @@ RunOutcome run_scenario(const Scenario& scenario, const RunOptions& options) {
   s.perception.progress = options.quiet ? nullptr : say;
   const perception::ObjectModel object = perception::build_object_model(inputs, s.perception);
   timing["perception"] = since(t);
+  result["hand"] = {{"finger_thickness", hand.finger_thickness},
+                    {"closed_aperture", hand.closed_aperture}};
+  json& loops_json = result["loops"] = json::array();
+  for (const auto& l : object.loops)
+    loops_json.push_back({{"rank", l.rank}, {"verdict", l.verdict}, {"reason", l.reason}});
   const perception::Loop* loop = choose_loop(object, s.loop_hint);
   if (!loop) {
     result["success"] = false;
@@ -282,14 +305,20 @@ RunOutcome run_scenario(const Scenario& scenario, const RunOptions& options) {
   }
   std::vector<servo::ClaspTarget> targets;
   json& targets_json = result["targets"] = json::array();
-  for (const auto& g : perception::clasp_targets(loop->points, s.targets)) {
+  for (const auto& g : perception::clasp_targets(*loop, s.targets, hand.closed_aperture)) {
     targets.push_back({g.p, g.tangent});
     targets_json.push_back({{"p", to_json(g.p)}, {"tangent", to_json(g.tangent)}});
   }
   result["loop"] = to_json(loop->points);
+  result["loop_choice"] = {{"rank", loop->rank},
+                           {"reason", loop->reason},
+                           {"hole_width", loop->hole_width},
+                           {"bar_thickness", loop->bar_thickness},
+                           {"fit", loop->fit}};
 
   // The scene: the robot, the object's collision mesh and the static environment.
-  const SceneGeometry scene{model, collision_mesh(object, *loop, s.path), s.boxes, loop->points};
+  const SceneGeometry scene{model, collision_mesh(object, *loop, s.perception, s.path), s.boxes,
+                            loop->points};
   result.update(scene_json(scene));
   robots::CollisionWorld world(model);
   world.set_object(scene.object.vertices, scene.object.triangles);

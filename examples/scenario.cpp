@@ -171,6 +171,39 @@ std::string resolve(const fs::path& dir, const std::string& file) {
   return (p.is_absolute() ? p : dir / p).lexically_normal().string();
 }
 
+// The keys of the torus, purse, sphere and holed_plate shapes.
+void read_shape_parameters(const Reader& s, ShapeSpec& shape) {
+  shape.major_radius = s.number("major_radius", shape.major_radius, 1e-3, 10.0);
+  shape.minor_radius = s.number("minor_radius", shape.minor_radius, 1e-4, 10.0);
+  if (shape.minor_radius >= shape.major_radius)
+    s.fail("minor_radius", "must be below major_radius");
+  shape.radius = s.number("radius", shape.radius, 1e-3, 10.0);
+  shape.holes = s.integer("holes", shape.holes, 0, 8);
+  shape.purse.body = s.vector3("body", shape.purse.body);
+  if ((shape.purse.body.array() <= 0.0).any()) s.fail("body", "needs three positive lengths");
+  shape.purse.handle_radius = s.number("handle_radius", shape.purse.handle_radius, 0.01, 2.0);
+  shape.purse.handle_tube = s.number("handle_tube", shape.purse.handle_tube, 0.002, 0.5);
+  if (shape.purse.handle_tube >= shape.purse.handle_radius) {
+    s.fail("handle_tube", "must be below handle_radius");
+  }
+}
+
+// A cup, mug or jug: an open container, with a side handle when handle_radius > 0.
+void read_container_parameters(const Reader& s, objects::Container& c) {
+  c.radius = s.number("radius", c.radius, 0.01, 1.0);
+  c.height = s.number("height", c.height, 0.01, 2.0);
+  c.wall = s.number("wall", c.wall, 0.002, 0.1);
+  c.handle_radius = s.number("handle_radius", 0.0, 0.0, 1.0);
+  c.handle_tube = s.number("handle_tube", c.handle_tube, 0.002, 0.2);
+  c.handle_height = s.number("handle_height", c.handle_height, 0.1, 0.9);
+  if (!(c.radius > 2 * c.wall) || !(c.height > 2 * c.wall))
+    s.fail("wall", "must be below half the radius and half the height");
+  if (c.handle_radius > 0 && !(c.handle_radius > c.handle_tube))
+    s.fail("handle_tube", "must be below handle_radius");
+  if (c.handle_radius + c.handle_tube >= c.height / 2)
+    s.fail("handle_radius", "the handle must fit on the wall (below half the height)");
+}
+
 void read_object(const Reader& r, const fs::path& dir, ObjectSpec& o) {
   r.only({"depth", "cloud", "mesh", "shape", "pose", "views", "cameras", "noise"});
   int sources = 0;
@@ -188,26 +221,18 @@ void read_object(const Reader& r, const fs::path& dir, ObjectSpec& o) {
     ++sources;
     const Reader s = r.child("shape");
     s.only({"type", "major_radius", "minor_radius", "radius", "holes", "body", "handle_radius",
-            "handle_tube"});
+            "handle_tube", "height", "wall", "handle_height"});
     ShapeSpec shape;
     shape.type = s.text("type");
-    const std::set<std::string> known = {"torus", "purse", "sphere", "holed_plate"};
+    const std::set<std::string> known = {"torus", "purse", "sphere", "holed_plate", "container"};
     if (!known.count(shape.type)) {
-      s.fail("type", "unknown shape '" + shape.type + "' (torus, purse, sphere, holed_plate)");
+      s.fail("type",
+             "unknown shape '" + shape.type + "' (torus, purse, sphere, holed_plate, container)");
     }
-    shape.major_radius = s.number("major_radius", shape.major_radius, 1e-3, 10.0);
-    shape.minor_radius = s.number("minor_radius", shape.minor_radius, 1e-4, 10.0);
-    if (shape.minor_radius >= shape.major_radius)
-      s.fail("minor_radius", "must be below major_radius");
-    shape.radius = s.number("radius", shape.radius, 1e-3, 10.0);
-    shape.holes = s.integer("holes", shape.holes, 0, 8);
-    shape.purse.body = s.vector3("body", shape.purse.body);
-    if ((shape.purse.body.array() <= 0.0).any()) s.fail("body", "needs three positive lengths");
-    shape.purse.handle_radius = s.number("handle_radius", shape.purse.handle_radius, 0.01, 2.0);
-    shape.purse.handle_tube = s.number("handle_tube", shape.purse.handle_tube, 0.002, 0.5);
-    if (shape.purse.handle_tube >= shape.purse.handle_radius) {
-      s.fail("handle_tube", "must be below handle_radius");
-    }
+    if (shape.type == "container")
+      read_container_parameters(s, shape.container);
+    else
+      read_shape_parameters(s, shape);
     o.shape = shape;
   }
   if (sources != 1) r.fail("", "give exactly one of depth, cloud, mesh or shape");
@@ -399,6 +424,8 @@ perception::PerceptionInputs scenario_inputs(const Scenario& s) {
     mesh = objects::purse(o.shape->purse);
   } else if (o.shape->type == "sphere") {
     mesh = objects::sphere_mesh(o.shape->radius);
+  } else if (o.shape->type == "container") {
+    mesh = objects::container(o.shape->container);
   } else {
     objects::HoledPlate plate;
     plate.holes = o.shape->holes;

@@ -22,11 +22,12 @@ namespace claspplan::cli {
 
 /// A procedural object of examples/objects.hpp with its parameters.
 struct ShapeSpec {
-  std::string type;                                 ///< torus, purse, sphere, holed_plate
+  std::string type;  ///< torus, purse, sphere, holed_plate, container
   double major_radius = 0.1, minor_radius = 0.012;  ///< torus
   double radius = 0.1;                              ///< sphere
   int holes = 2;                                    ///< holed_plate
   objects::Purse purse;                             ///< purse: body, handle_radius, handle_tube
+  objects::Container container;  ///< container: radius, height, wall, handle_radius (0: none), ...
 };
 
 struct ObjectSpec {

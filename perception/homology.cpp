@@ -370,6 +370,35 @@ int betti_1(const SimplicialComplex& complex) {
   return annotate(complex, g, false, std::numeric_limits<int>::max()).beta1;
 }
 
+std::vector<bool> bounds_in(const SimplicialComplex& larger,
+                            const std::vector<std::vector<int>>& cycles) {
+  std::vector<bool> out(cycles.size(), true);
+  if (cycles.empty()) return out;
+  const Graph g(larger);
+  const Annotation a = annotate(larger, g, true, std::numeric_limits<int>::max());
+  if (a.beta1 == 0) return out;
+  const int W = a.words;
+  std::vector<Word> cls(W);
+  for (std::size_t c = 0; c < cycles.size(); ++c) {
+    std::fill(cls.begin(), cls.end(), 0);
+    const auto& vs = cycles[c];
+    for (std::size_t i = 0; i < vs.size(); ++i) {
+      const int u = vs[i], w = vs[(i + 1) % vs.size()];
+      int edge = -1;
+      if (u >= 0 && u < g.n) {
+        for (int k = g.start[u]; k < g.start[u + 1]; ++k)
+          if (g.arcs[k].to == w) edge = g.arcs[k].edge;
+      }
+      if (edge < 0)
+        throw std::invalid_argument("bounds_in: the cycle's edge " + std::to_string(u) + "-" +
+                                    std::to_string(w) + " is not in the larger complex");
+      for (int k = 0; k < W; ++k) cls[k] ^= a.edge_ann[size_t(edge) * W + k];
+    }
+    out[c] = is_zero(cls.data(), W);
+  }
+  return out;
+}
+
 namespace {
 
 // A vertex cover of `edges` (greedy: the vertex with the most uncovered edges first, ties to the

@@ -50,6 +50,13 @@ struct HomologyBasis {
 /// beta1 only (step 1), cheap.
 int betti_1(const SimplicialComplex& complex);
 
+/// For each cycle (a closed vertex path, first vertex not repeated; consecutive vertices must be
+/// joined by edges of `larger`), whether it bounds in `larger`: its class there is zero. With
+/// `larger` = K_d' for d' > d this tells which loops of K_d persist (a hole narrower than about
+/// d' fills in). Throws std::invalid_argument when a cycle uses an edge `larger` lacks.
+std::vector<bool> bounds_in(const SimplicialComplex& larger,
+                            const std::vector<std::vector<int>>& cycles);
+
 /// The shortest H1 basis (steps 1-3).
 HomologyBasis shortest_homology_basis(const SimplicialComplex& complex,
                                       const HomologyOptions& options = {});

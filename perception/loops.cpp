@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <limits>
 #include <stdexcept>
 
 #include <Eigen/Eigenvalues>
@@ -63,14 +64,136 @@ double closed_length(const std::vector<Eigen::Vector3d>& loop) {
 
 namespace {
 
+// A finger passes a hole this much wider than itself.
+constexpr double kFingerClearance = 0.005;
+// Room a hand needs beyond a hole, before the table, to curl its fingers (m).
+constexpr double kMinRoom = 0.05;
+
+// Material on every side of an axis at p (direction u): among the points within `radius` of p
+// and `half` of its cross-section plane, no angular gap over 90 degrees.
+bool surrounded(const PointIndex& index, const Eigen::Vector3d& p, const Eigen::Vector3d& u,
+                double radius, double half) {
+  const Eigen::Vector3d u1 = u.unitOrthogonal(), u2 = u.cross(u1);
+  std::vector<std::pair<unsigned, double>> near;
+  index.radius(p, radius, near);
+  std::vector<double> angles;
+  for (const auto& [i, d2] : near) {
+    const Eigen::Vector3d v = index.points()[i] - p;
+    if (std::abs(v.dot(u)) > half) continue;
+    const double x = v.dot(u1), y = v.dot(u2);
+    if (x * x + y * y > 1e-18) angles.push_back(std::atan2(y, x));
+  }
+  if (angles.size() < 4) return false;
+  std::sort(angles.begin(), angles.end());
+  double gap = angles.front() + 2 * M_PI - angles.back();
+  for (std::size_t k = 1; k < angles.size(); ++k) gap = std::max(gap, angles[k] - angles[k - 1]);
+  return gap < M_PI / 2;
+}
+
+// Distance from p along the unit direction u to where the ray leaves the box (0 if outside).
+double exit_distance(const Eigen::AlignedBox3d& box, const Eigen::Vector3d& p,
+                     const Eigen::Vector3d& u) {
+  double t = std::numeric_limits<double>::infinity();
+  for (int k = 0; k < 3; ++k) {
+    if (u[k] > 1e-12) t = std::min(t, (box.max()[k] - p[k]) / u[k]);
+    if (u[k] < -1e-12) t = std::min(t, (box.min()[k] - p[k]) / u[k]);
+  }
+  return std::max(0.0, t);
+}
+
+// The bar's cross-section at loop point p with tangent t: the cloud points in a slab across the
+// loop, grown from p over gaps shorter than `link`; its diameter. +inf when it reaches `cap` (a
+// wall or a body), or when the ring where closed fingers would lie around it (its radius plus
+// half a finger) meets material or space no camera saw (the bar may be deeper than it looked).
+double bar_at(const PointIndex& index, const std::vector<DepthView>& views,
+              const Eigen::Vector3d& p, const Eigen::Vector3d& t, double link, double cap,
+              double finger) {
+  constexpr double kInf = std::numeric_limits<double>::infinity();
+  const PointCloud& cloud = index.points();
+  std::vector<std::pair<unsigned, double>> near;
+  index.radius(p, cap, near);
+  std::vector<Eigen::Vector3d> slab;
+  for (const auto& [i, d2] : near) {
+    const Eigen::Vector3d v = cloud[i] - p;
+    if (std::abs(v.dot(t)) <= 0.5 * link) slab.push_back(v - t * v.dot(t));
+  }
+  std::sort(slab.begin(), slab.end(), [](const Eigen::Vector3d& a, const Eigen::Vector3d& b) {
+    return a.squaredNorm() < b.squaredNorm();
+  });
+  if (slab.empty() || slab.front().norm() > link) return 0.0;  // no material measured here
+  std::vector<char> in(slab.size(), 0);
+  std::vector<int> blob{0}, stack{0};
+  in[0] = 1;
+  while (!stack.empty()) {
+    const int a = stack.back();
+    stack.pop_back();
+    for (std::size_t b = 0; b < slab.size(); ++b) {
+      if (in[b] || (slab[b] - slab[a]).norm() > link) continue;
+      if (slab[b].norm() > 0.95 * cap) return kInf;
+      in[b] = 1;
+      blob.push_back(static_cast<int>(b));
+      stack.push_back(static_cast<int>(b));
+    }
+  }
+  double diameter = 0.0;
+  Eigen::Vector3d centre = Eigen::Vector3d::Zero();
+  for (std::size_t i = 0; i < blob.size(); ++i) {
+    centre += slab[blob[i]];
+    for (std::size_t j = i + 1; j < blob.size(); ++j)
+      diameter = std::max(diameter, (slab[blob[i]] - slab[blob[j]]).norm());
+  }
+  centre = p + centre / static_cast<double>(blob.size());
+  // Where the fingers go: 12 places around the bar; at most one may be doubtful (noise).
+  const Eigen::Vector3d u1 = t.unitOrthogonal(), u2 = t.cross(u1);
+  const double ring = 0.5 * diameter + 0.5 * finger + 0.5 * link;
+  int doubtful = 0;
+  for (int k = 0; k < 12; ++k) {
+    const double a = 2.0 * M_PI * k / 12.0;
+    const Eigen::Vector3d q = centre + ring * (std::cos(a) * u1 + std::sin(a) * u2);
+    const bool material = index.count_within(q, 0.5 * finger, 1) > 0;
+    const bool hidden = !views.empty() && seen_from(views, q, 0.005) == Seen::kBlocked;
+    doubtful += material || hidden;
+  }
+  return doubtful > 1 ? kInf : diameter;
+}
+
+// Arc-length positions of kBarSamples places along a closed polyline, with unit tangents.
+std::vector<std::pair<Eigen::Vector3d, Eigen::Vector3d>> arc_samples(
+    const std::vector<Eigen::Vector3d>& loop, int k) {
+  std::vector<std::pair<Eigen::Vector3d, Eigen::Vector3d>> out;
+  for (const auto& g : clasp_targets(loop, k)) out.emplace_back(g.p, g.tangent);
+  return out;
+}
+
+void measure_bar(Loop& loop, const PointIndex& index, const std::vector<DepthView>& views,
+                 const RankingOptions& o) {
+  double link = o.link_distance;
+  if (!(link > 0)) link = 1.5 * loop.length / static_cast<double>(loop.points.size());
+  const double cap = o.closed_aperture > 0 ? std::max(0.06, 1.5 * o.closed_aperture) : 0.15;
+  const double finger = o.finger_thickness > 0 ? o.finger_thickness : 0.5 * o.min_hole;
+  loop.bar_profile.clear();
+  std::vector<double> measured;
+  for (const auto& [p, t] : arc_samples(loop.points, kBarSamples)) {
+    const double b = bar_at(index, views, p, t, link, cap, finger);
+    loop.bar_profile.push_back(b);
+    if (b > 0) measured.push_back(b);
+  }
+  // The third thinnest place: one or two partial cross-sections (sparse points) read too thin.
+  std::sort(measured.begin(), measured.end());
+  loop.bar_thickness = measured.size() >= 3 ? measured[2] : std::numeric_limits<double>::infinity();
+}
+
 void assess(Loop& loop, const PointIndex& index, const std::vector<DepthView>& views,
             const RankingOptions& options) {
   const PointCloud& cloud = index.points();
+  Eigen::AlignedBox3d bounds;
+  for (const auto& p : cloud) bounds.extend(p);
   auto& pts = loop.points;
   loop.length = closed_length(pts);
   loop.claspable = false;
   loop.hole_width = 0.0;
   if (pts.size() < 3 || !(loop.length > 0)) {
+    loop.verdict = "degenerate";
     loop.reason = "degenerate loop (fewer than 3 distinct points)";
     return;
   }
@@ -134,13 +257,20 @@ void assess(Loop& loop, const PointIndex& index, const std::vector<DepthView>& v
   }
   if (samples.empty()) {
     loop.centre = c;
+    loop.verdict = "degenerate";
     loop.reason = "degenerate loop (its plane projection has no interior)";
     return;
   }
   loop.hole_width = 2.0 * best;
-  if (loop.hole_width < options.min_hole) {
-    loop.reason = "too narrow: hole " + metres(loop.hole_width) + " wide < min-hole " +
-                  metres(options.min_hole);
+  // With a hand, the narrowest hole is its fingers' (min_hole is for an unknown hand).
+  const bool hand = options.finger_thickness > 0;
+  const double min_hole = hand ? options.finger_thickness + kFingerClearance : options.min_hole;
+  if (loop.hole_width < min_hole) {
+    loop.verdict = hand ? "hand_too_large" : "too_narrow";
+    loop.reason = hand ? "too narrow for this hand: hole " + metres(loop.hole_width) +
+                             " wide < fingers " + metres(options.finger_thickness) + " + 5 mm"
+                       : "too narrow: hole " + metres(loop.hole_width) + " wide < min-hole " +
+                             metres(options.min_hole);
     return;
   }
   // Seen through? Only the central part of the hole (away from the loop's own surface).
@@ -155,6 +285,7 @@ void assess(Loop& loop, const PointIndex& index, const std::vector<DepthView>& v
     }
     if (free + blocked > 0 && free < blocked) {
       const int hidden = static_cast<int>(std::lround(100.0 * blocked / (free + blocked)));
+      loop.verdict = "occlusion_shadow";
       loop.reason = "occlusion shadow: " + std::to_string(hidden) +
                     "% of the hole lies on or behind measured surface in every camera (never "
                     "seen through: a gap behind a nearer part, or in sparse data)";
@@ -163,12 +294,13 @@ void assess(Loop& loop, const PointIndex& index, const std::vector<DepthView>& v
   }
   // Open passage: a finger-wide probe along the hole's axis must not meet material, and free
   // space must open up beyond the object on both sides.
-  const double rho = 0.45 * options.min_hole;
+  const double rho = 0.45 * min_hole;
   const double reach = std::max(2.0 * loop.hole_width, 0.1);
   const double dt = std::max(rho / 2.0, 1e-4);
   for (double t = dt; t <= reach + 1e-12; t += dt) {
     for (double sgn : {1.0, -1.0}) {
       if (index.count_within(loop.centre + sgn * t * n, rho, 2) >= 2) {
+        loop.verdict = "tube_wall";
         loop.reason = "loop around a tube wall: material inside the loop (a " + metres(2 * rho) +
                       " probe through it is blocked " + metres(t) + " from the hole)";
         return;
@@ -193,14 +325,72 @@ void assess(Loop& loop, const PointIndex& index, const std::vector<DepthView>& v
     double gap = angles.front() + 2 * M_PI - angles.back();
     for (size_t k = 1; k < angles.size(); ++k) gap = std::max(gap, angles[k] - angles[k - 1]);
     if (gap < M_PI / 2) {
+      loop.verdict = "tube_wall";
       loop.reason = "loop around a tube wall: material all around the passage " + metres(reach) +
                     " from the hole (the inside of a tube, not a hole)";
       return;
     }
   }
+  // A passage, not a cavity's opening. Followed downwards until it leaves the object's bounds,
+  // the passage must not meet the supporting surface soon (a hole lying on the table: no room
+  // for fingers beyond it), nor meet it after running between walls on every side (a container's
+  // mouth whose inside bottom was unseen or removed with the table).
+  if (options.support_plane) {
+    const Eigen::Vector3d up = options.support_plane->head<3>().normalized();
+    const double height =
+        (options.support_plane->head<3>().dot(loop.centre) + (*options.support_plane)[3]) /
+        options.support_plane->head<3>().norm();
+    const double descent = -up.dot(n);  // height lost per metre along +n
+    const Eigen::Vector3d down = (descent > 0 ? 1.0 : -1.0) * n;
+    if (std::abs(descent) > 1e-9) {
+      const double t_floor = height / std::abs(descent);
+      if (t_floor < std::max(kMinRoom, 2.0 * options.finger_thickness)) {
+        loop.verdict = "cavity";
+        loop.reason =
+            "blocked by the support: the passage through the loop meets the "
+            "supporting surface " +
+            metres(t_floor) + " from the hole (no room for fingers beyond it)";
+        return;
+      }
+      // Within the object's extent (its lowest points may be cropped just above the table).
+      const double link = options.link_distance > 0 ? options.link_distance : 0.01;
+      if (t_floor <= exit_distance(bounds, loop.centre, down) + 2.0 * link) {
+        for (double t = std::max(best, link); t < t_floor - link; t += link) {
+          if (surrounded(index, loop.centre + t * down, down, 1.5 * best, link)) {
+            loop.verdict = "cavity";
+            loop.reason = "opening into a cavity: walls all around the passage " + metres(t) +
+                          " in, and it ends at the supporting surface " + metres(t_floor) +
+                          " from the hole (a container's mouth)";
+            return;
+          }
+        }
+      }
+    }
+  }
+  // The closed hand around the bar.
+  measure_bar(loop, index, views, options);
+  if (options.closed_aperture > 0 && !(loop.bar_thickness <= options.closed_aperture)) {
+    loop.verdict = "bar_too_thick";
+    loop.reason = "bar too thick for this hand: the thinnest material along the loop is " +
+                  (std::isfinite(loop.bar_thickness) ? metres(loop.bar_thickness)
+                                                     : std::string("a wall or body")) +
+                  " across > the closed hand's " + metres(options.closed_aperture);
+    return;
+  }
   loop.claspable = true;
-  loop.reason = "claspable: open hole " + metres(loop.hole_width) + " wide (min-hole " +
-                metres(options.min_hole) + ")" + (views.empty() ? "" : ", seen through");
+  loop.verdict = "claspable";
+  loop.reason = "claspable: open hole " + metres(loop.hole_width) + " wide (" +
+                (hand ? "fingers need " : "min-hole ") + metres(min_hole) + ")" +
+                (views.empty() ? "" : ", seen through");
+  if (hand || options.closed_aperture > 0) {
+    const double hole_slack = (loop.hole_width - min_hole) / min_hole;
+    const double bar_slack =
+        options.closed_aperture > 0
+            ? (options.closed_aperture - loop.bar_thickness) / options.closed_aperture
+            : hole_slack;
+    loop.fit = std::min(hole_slack, bar_slack);
+    loop.reason += ", bar " + metres(loop.bar_thickness) + " fits the hand";
+  }
 }
 
 }  // namespace
@@ -215,8 +405,10 @@ void rank_loops(std::vector<Loop>& loops, const PointCloud& cloud,
                 const std::vector<DepthView>& views, const RankingOptions& options) {
   const PointIndex index(cloud);
   for (auto& l : loops) assess(l, index, views, options);
-  std::stable_sort(loops.begin(), loops.end(), [](const Loop& a, const Loop& b) {
+  const bool hand = options.finger_thickness > 0 || options.closed_aperture > 0;
+  std::stable_sort(loops.begin(), loops.end(), [hand](const Loop& a, const Loop& b) {
     if (a.claspable != b.claspable) return a.claspable;
+    if (a.claspable && hand && a.fit != b.fit) return a.fit > b.fit;
     if (a.claspable && a.hole_width != b.hole_width) return a.hole_width > b.hole_width;
     return a.length < b.length;
   });
@@ -247,6 +439,24 @@ std::vector<ClaspTarget> clasp_targets(const std::vector<Eigen::Vector3d>& loop,
     Eigen::Vector3d t = at(s + h) - at(s - h);
     if (!(t.norm() > 1e-12)) t = at(s + 1e-6 * total) - at(s);
     out.push_back({at(s), t.normalized()});
+  }
+  return out;
+}
+
+std::vector<ClaspTarget> clasp_targets(const Loop& loop, int k, double max_bar) {
+  const int n = static_cast<int>(loop.bar_profile.size());
+  std::vector<int> fits;
+  for (int i = 0; i < n; ++i)
+    if (loop.bar_profile[i] > 0 && loop.bar_profile[i] <= max_bar) fits.push_back(i);
+  if (!(max_bar > 0) || fits.empty() || static_cast<int>(fits.size()) == n)
+    return clasp_targets(loop.points, k);
+  if (k < 1) throw std::invalid_argument("the number of clasp targets must be >= 1");
+  // The fitting samples stand for equal arcs; spread k targets over them evenly.
+  const auto fine = clasp_targets(loop.points, n);
+  std::vector<ClaspTarget> out;
+  for (int i = 0; i < k; ++i) {
+    const double at = i * static_cast<double>(fits.size()) / k;
+    out.push_back(fine[fits[std::min(static_cast<int>(at), static_cast<int>(fits.size()) - 1)]]);
   }
   return out;
 }

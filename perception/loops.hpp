@@ -2,7 +2,7 @@
 // and clasp targets G = {(p_i, p'_i)} (paper Sec. IV-A).
 //
 // Ranking, per loop (the hole's plane is the loop's least-squares plane, its centre the point of
-// the loop's planar polygon farthest from every cloud point):
+// the loop's planar polygon farthest from every cloud point), in this order:
 //  - hole width = 2 x that largest clearance (the widest ball that fits in the hole);
 //    < min_hole -> "too narrow".
 //  - seen through (only with cameras: depth input, or meshes sampled from --view positions): the
@@ -13,10 +13,20 @@
 //    directions for max(2 x width, 0.1 m). If cloud points fall inside it, or at either end the
 //    points within 1.5 hole radii surround the axis (no angular gap over 90 degrees), the loop runs
 //    around material (a tube's wall), not around a hole -> "loop around a tube wall".
+//  - through, not into a cavity: followed along either normal direction until it leaves the
+//    object's bounds, the passage must not end at the supporting surface. A container's mouth (its
+//    inside bottom unseen or removed with the table) and a hole lying flat on the table end there
+//    -> "opening into a cavity".
+//  - hand fit (only when a hand's sizes are given): the hole must be wider than the fingers
+//    (finger thickness + 5 mm) -> else "too narrow for this hand"; the bar (the material the loop
+//    runs along, measured across the loop at 48 places) must fit inside the closed hand somewhere
+//    -> else "bar too thick for this hand".
 //  - otherwise claspable.
-// Order: claspable loops first, widest hole first; then the others, shortest first.
+// Order: claspable loops first, the best fit for the hand first (widest hole without a hand); then
+// the others, shortest first.
 #pragma once
 
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -31,14 +41,34 @@ struct Loop {
   double length = 0.0;                  ///< metres
   int rank = 0;                         ///< 1 = best
   bool claspable = false;
-  std::string reason;                                 ///< one line: the verdict and its measure
-  double hole_width = 0.0;                            ///< metres (0 if not measured)
+  std::string reason;  ///< one line: the verdict and its measure
+  /// One word for the verdict: claspable, too_narrow, occlusion_shadow, tube_wall, cavity,
+  /// hand_too_large, bar_too_thick, degenerate.
+  std::string verdict;
+  double hole_width = 0.0;  ///< metres (0 if not measured)
+  /// Bar thickness across the loop at kBarSamples equally spaced places (arc length, from the
+  /// first point): the diameter of the material's cross-section there; +inf where the material
+  /// reaches farther than the measuring range (a wall or a body, not a bar). Empty if not measured.
+  std::vector<double> bar_profile;
+  double bar_thickness = 0.0;  ///< the thinnest of bar_profile (m)
+  /// How well the hand fits (with a hand): the smaller relative slack of hole and bar; higher is
+  /// better. 0 without a hand.
+  double fit = 0.0;
   Eigen::Vector3d centre = Eigen::Vector3d::Zero();   ///< hole centre (largest clearance)
   Eigen::Vector3d normal = Eigen::Vector3d::UnitZ();  ///< of the loop's plane
 };
 
+constexpr int kBarSamples = 48;
+
 struct RankingOptions {
   double min_hole = 0.03;  ///< metres: a hole narrower than this cannot take a finger
+  /// The supporting surface (n.p + c = 0, n up), when one was found: a passage must not end on it.
+  std::optional<Eigen::Vector4d> support_plane;
+  /// Linking distance of the cloud's surface when measuring bars (m); 0: from the loop's edges.
+  double link_distance = 0.0;
+  /// The hand to rank for (robots::HandSize); 0 = no hand: min_hole and no bar test.
+  double finger_thickness = 0.0;
+  double closed_aperture = 0.0;
 };
 
 /// Orients the loop (counter-clockwise about the normal with a positive z, else y, else x
@@ -60,6 +90,11 @@ struct ClaspTarget {
 /// and following its order; each tangent is the unit chord between the points half a target
 /// spacing before and after. Throws std::invalid_argument for k < 1 or a degenerate loop.
 std::vector<ClaspTarget> clasp_targets(const std::vector<Eigen::Vector3d>& loop, int k);
+
+/// `k` targets equally spaced by arc length over the parts of the loop whose bar is at most
+/// `max_bar` thick (loop.bar_profile); the whole loop when max_bar <= 0, the profile is empty, or
+/// no part fits.
+std::vector<ClaspTarget> clasp_targets(const Loop& loop, int k, double max_bar);
 
 /// Length of a closed polyline.
 double closed_length(const std::vector<Eigen::Vector3d>& loop);

@@ -19,6 +19,8 @@ namespace {
 // points are thinned to 3 N before the outlier filter, its cost dominating the 100 ms budget.
 constexpr int kOversample = 4;
 constexpr int kDepthOversample = 3;
+// How far below and around the workspace the supporting plane is looked for (m).
+constexpr double kSupportMargin = 0.1;
 
 double seconds_since(std::chrono::steady_clock::time_point t0) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
@@ -38,6 +40,11 @@ void validate_options(const PerceptionOptions& o) {
                                 std::to_string(o.d));
   if (!(o.d_factor > 0) || !std::isfinite(o.d_factor))
     throw std::invalid_argument("the automatic-d factor must be > 0");
+  if (!(o.persistence >= 0) || !std::isfinite(o.persistence))
+    throw std::invalid_argument("the persistence factor must be >= 0");
+  if (!(o.finger_thickness >= 0 && o.closed_aperture >= 0) ||
+      !std::isfinite(o.finger_thickness + o.closed_aperture))
+    throw std::invalid_argument("hand sizes must be finite and >= 0");
   if (!(o.min_hole > 0) || !std::isfinite(o.min_hole))
     throw std::invalid_argument("--min-hole must be > 0 metres, got " + std::to_string(o.min_hole));
   if (o.targets < 1 || o.targets > 100000)
@@ -93,6 +100,7 @@ struct Prepared {
   PointCloud cloud;
   std::vector<DepthView> views;
   int input_points = 0, plane_points = 0, outliers = 0;
+  std::optional<Eigen::Vector4d> plane;
 };
 
 Prepared prepare(const PerceptionInputs& in, const PerceptionOptions& o) {
@@ -114,16 +122,27 @@ Prepared prepare(const PerceptionInputs& in, const PerceptionOptions& o) {
     }
     if (depth.empty()) throw std::invalid_argument("the depth images have no reading (all 0)");
     r.input_points += static_cast<int>(depth.size());
-    depth = crop_to_box(depth, o.workspace);
-    if (depth.empty()) throw std::invalid_argument("no depth point lies inside the workspace box");
+    if (crop_to_box(depth, o.workspace).empty())
+      throw std::invalid_argument("no depth point lies inside the workspace box");
     if (o.remove_plane) {
+      // The support is searched a little below and around the workspace: a crop just above the
+      // table must not hide it (loop ranking needs to know where the table is).
+      Eigen::AlignedBox3d around = o.workspace;
+      if (!around.isEmpty()) {
+        around.min() -= Eigen::Vector3d(kSupportMargin, kSupportMargin, kSupportMargin);
+        around.max().head<2>() += Eigen::Vector2d::Constant(kSupportMargin);
+      }
       PlaneRemovalOptions po;
       po.seed = o.seed;
-      PlaneRemovalResult pr = remove_supporting_plane(depth, po);
+      PlaneRemovalResult pr = remove_supporting_plane(crop_to_box(depth, around), po);
       r.plane_points = pr.plane_points;
+      if (pr.removed) r.plane = pr.plane;
       depth = std::move(pr.kept);
-      if (depth.empty()) throw std::invalid_argument("no depth point above the supporting plane");
     }
+    depth = crop_to_box(depth, o.workspace);
+    if (depth.empty())
+      throw std::invalid_argument(o.remove_plane ? "no depth point above the supporting plane"
+                                                 : "no depth point lies inside the workspace box");
     depth = random_subset(depth, kDepthOversample * n, o.seed);
     const size_t before = depth.size();
     if (o.outlier_k > 0) depth = remove_statistical_outliers(depth, o.outlier_k, o.outlier_stddev);
@@ -181,6 +200,7 @@ ObjectModel build_object_model(const PerceptionInputs& in, const PerceptionOptio
   m.views = std::move(r.views);
   m.input_points = r.input_points;
   m.plane_points_removed = r.plane_points;
+  m.support_plane = r.plane;
   m.outliers_removed = r.outliers;
 
   t = Clock::now();
@@ -214,21 +234,41 @@ ObjectModel build_object_model(const PerceptionInputs& in, const PerceptionOptio
 
   t = Clock::now();
   const HomologyBasis basis = shortest_homology_basis(m.complex, o.homology);
-  m.timings.homology = seconds_since(t);
   m.beta1 = basis.beta1;
   say(o, fmt("perception: beta1 = %.0f (%.0f Dijkstra roots)", basis.beta1, basis.roots));
 
+  // Stability: drop loops that the next scale fills (sampling gaps, noise).
+  std::vector<bool> fills(basis.cycles.size(), false);
+  if (o.persistence > 0 && !basis.cycles.empty()) {
+    m.persistence_d = std::max(o.persistence * m.d, 0.5 * o.min_hole);
+    std::vector<std::vector<int>> cycles;
+    for (const auto& c : basis.cycles) cycles.push_back(c.vertices);
+    fills = bounds_in(build_complex(dg, m.persistence_d), cycles);
+  }
+  m.timings.homology = seconds_since(t);
+
   t = Clock::now();
-  for (const auto& c : basis.cycles) {
+  for (std::size_t i = 0; i < basis.cycles.size(); ++i) {
+    if (fills[i]) {
+      ++m.unstable_loops;
+      continue;
+    }
     Loop l;
-    l.vertices = c.vertices;
-    for (int v : c.vertices) l.points.push_back(m.cloud[v]);
+    l.vertices = basis.cycles[i].vertices;
+    for (int v : l.vertices) l.points.push_back(m.cloud[v]);
     m.loops.push_back(std::move(l));
   }
+  if (m.unstable_loops > 0)
+    say(o, fmt("perception: %.0f of the loops are not stable (they fill in by d' = %.4f m)",
+               m.unstable_loops, m.persistence_d));
   RankingOptions ro;
   ro.min_hole = o.min_hole;
+  ro.support_plane = m.support_plane;
+  ro.link_distance = m.d;
+  ro.finger_thickness = o.finger_thickness;
+  ro.closed_aperture = o.closed_aperture;
   rank_loops(m.loops, m.cloud, m.views, ro);
-  if (const Loop* best = m.best()) m.targets = clasp_targets(best->points, o.targets);
+  if (const Loop* best = m.best()) m.targets = clasp_targets(*best, o.targets, o.closed_aperture);
   m.timings.ranking = seconds_since(t);
   m.timings.total = seconds_since(t_start);
   return m;

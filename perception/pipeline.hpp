@@ -12,11 +12,16 @@
 //     put in Morton order (locality).
 //  3. d: given, or automatic_d() = 3.5 x the mean nearest-neighbour spacing of the N points.
 //  4. K_d from the CGAL 3-D Delaunay triangulation; the exact shortest H1 basis over Z2.
-//  5. Loops ranked (loops.hpp); k clasp targets on the best loop if it is claspable.
+//  5. Only stable loops are kept: a loop whose class is zero in K_d' (d' = persistence x d, and at
+//     least half of min_hole) is a sampling gap that the next scale fills, not a hole; so more
+//     points (a smaller d) never mean more loops. Holes a finger can pass (>= min_hole) survive.
+//  6. Loops ranked (loops.hpp), for the hand if its sizes are given; k clasp targets on the best
+//     loop if it is claspable, where its bar fits the hand.
 #pragma once
 
 #include <cstdint>
 #include <functional>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -55,6 +60,11 @@ struct PerceptionOptions {
   bool remove_plane = true;       ///< supporting-plane removal for depth input
   int outlier_k = 10;             ///< statistical outlier removal (depth input); 0 = off
   double outlier_stddev = 2.0;
+  /// Loops must persist to d' = max(persistence x d, min_hole / 2); 0 keeps every loop of K_d.
+  double persistence = 1.25;
+  /// The hand to rank loops for (robots::hand_size()); 0 = none. See RankingOptions.
+  double finger_thickness = 0.0;
+  double closed_aperture = 0.0;
   HomologyOptions homology;
   /// Optional progress messages for long steps (the CLI prints them on stderr).
   std::function<void(const std::string&)> progress;
@@ -67,17 +77,20 @@ struct PerceptionTimings {
 
 /// The object representation (S, K_d, G) of paper Sec. IV-A, plus what it was made from.
 struct ObjectModel {
-  PointCloud cloud;           ///< the N points used
-  SimplicialComplex complex;  ///< K_d
-  double d = 0.0;             ///< the d used
-  std::string d_rule;         ///< how d was chosen, one line
-  double mean_spacing = 0.0;  ///< of the N points
-  int beta1 = 0;
-  std::vector<Loop> loops;           ///< ranked, best first
+  PointCloud cloud;                  ///< the N points used
+  SimplicialComplex complex;         ///< K_d
+  double d = 0.0;                    ///< the d used
+  std::string d_rule;                ///< how d was chosen, one line
+  double mean_spacing = 0.0;         ///< of the N points
+  int beta1 = 0;                     ///< of K_d
+  double persistence_d = 0.0;        ///< d' of the stability test (0: not tested)
+  int unstable_loops = 0;            ///< basis loops dropped: they bound in K_d'
+  std::vector<Loop> loops;           ///< the stable ones, ranked, best first
   std::vector<ClaspTarget> targets;  ///< on loops[0] if it is claspable, else empty
   std::vector<DepthView> views;      ///< cameras used by the occlusion test
   int input_points = 0;              ///< points before down-sampling
   int plane_points_removed = 0;
+  std::optional<Eigen::Vector4d> support_plane;  ///< the removed supporting plane, n up
   int outliers_removed = 0;
   PerceptionTimings timings;
 

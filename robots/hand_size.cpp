@@ -1,0 +1,136 @@
+#include "robots/hand_size.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <vector>
+
+#include <Eigen/Eigenvalues>
+
+#include "robots/kinematics.hpp"
+
+namespace claspplan::robots {
+namespace {
+
+// The diameter of the circle around a shape's cross-section, across its longest axis.
+double cross_section(const CollisionShape& s) {
+  switch (s.type) {
+    case CollisionShape::Type::kBox: {
+      Eigen::Vector3d e = s.size;
+      std::sort(e.data(), e.data() + 3);
+      return std::hypot(e[0], e[1]);
+    }
+    case CollisionShape::Type::kSphere:
+    case CollisionShape::Type::kCylinder:
+    case CollisionShape::Type::kCapsule:
+      return 2.0 * s.radius;
+  }
+  return 0.0;
+}
+
+double closed_length(const std::vector<Eigen::Vector3d>& c) {
+  double l = 0.0;
+  for (std::size_t i = 0; i < c.size(); ++i) l += (c[(i + 1) % c.size()] - c[i]).norm();
+  return l;
+}
+
+// 1 - cord / closed length: the factor of paper eq. 2, what the curve's VLk is when it links.
+double cord_ratio(const std::vector<Eigen::Vector3d>& c) {
+  const double total = closed_length(c);
+  return total > 0 ? 1.0 - (c.back() - c.front()).norm() / total : 0.0;
+}
+
+double segment_distance(const Eigen::Vector2d& p, const Eigen::Vector2d& a,
+                        const Eigen::Vector2d& b) {
+  const Eigen::Vector2d ab = b - a;
+  const double t = std::clamp((p - a).dot(ab) / std::max(ab.squaredNorm(), 1e-300), 0.0, 1.0);
+  return (a + t * ab - p).norm();
+}
+
+bool inside(const std::vector<Eigen::Vector2d>& poly, const Eigen::Vector2d& q) {
+  bool in = false;
+  for (std::size_t i = 0, j = poly.size() - 1; i < poly.size(); j = i++) {
+    const auto& a = poly[i];
+    const auto& b = poly[j];
+    if ((a.y() > q.y()) != (b.y() > q.y()) &&
+        q.x() < (b.x() - a.x()) * (q.y() - a.y()) / (b.y() - a.y()) + a.x())
+      in = !in;
+  }
+  return in;
+}
+
+// Diameter of the largest circle inside the closed curve, in its least-squares plane.
+double inscribed_diameter(const std::vector<Eigen::Vector3d>& c) {
+  Eigen::Vector3d mean = Eigen::Vector3d::Zero();
+  for (const auto& p : c) mean += p;
+  mean /= static_cast<double>(c.size());
+  Eigen::Matrix3d cov = Eigen::Matrix3d::Zero();
+  for (const auto& p : c) cov += (p - mean) * (p - mean).transpose();
+  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> es(cov);
+  const Eigen::Vector3d e1 = es.eigenvectors().col(2), e2 = es.eigenvectors().col(1);
+  std::vector<Eigen::Vector2d> poly;
+  Eigen::AlignedBox2d box;
+  for (const auto& p : c) {
+    poly.emplace_back((p - mean).dot(e1), (p - mean).dot(e2));
+    box.extend(poly.back());
+  }
+  const double step = std::max(box.sizes().maxCoeff() / 100.0, 1e-5);
+  double best = 0.0;
+  for (double x = box.min().x(); x <= box.max().x(); x += step) {
+    for (double y = box.min().y(); y <= box.max().y(); y += step) {
+      const Eigen::Vector2d q(x, y);
+      if (!inside(poly, q)) continue;
+      double d = std::numeric_limits<double>::infinity();
+      for (std::size_t i = 0; i < poly.size(); ++i)
+        d = std::min(d, segment_distance(q, poly[i], poly[(i + 1) % poly.size()]));
+      best = std::max(best, d);
+    }
+  }
+  return 2.0 * best;
+}
+
+}  // namespace
+
+HandSize hand_size(const RobotModel& model) {
+  HandSize size;
+  // The links the finger's own joints move (not a knuckle base that stays outside the hole).
+  for (const Finger& f : model.fingers) {
+    for (int link : f.links) {
+      bool moved = false;
+      for (int s : model.links[link].support)
+        moved |=
+            std::find(f.joints.begin(), f.joints.end(), model.links[s].q_index) != f.joints.end();
+      if (!moved) continue;
+      for (int s : model.links[link].shapes)
+        size.finger_thickness = std::max(size.finger_thickness, cross_section(model.shapes[s]));
+    }
+  }
+
+  // Close from the open pre-shape until the mean cord ratio reaches the goal (eq. 4 averages).
+  constexpr double kStep = 0.005;  // rad per joint and step
+  Eigen::VectorXd q = model.home;
+  RobotData data(model);
+  FingerCurvesData curves;
+  const Eigen::VectorXd lower = model.lower(), upper = model.upper();
+  for (int k = 0; k < 2000; ++k) {
+    finger_curves(model, q, data, curves, false);
+    double mean = 0.0;
+    for (const auto& c : curves.points) mean += cord_ratio(c);
+    if (curves.points.empty() ||
+        mean / static_cast<double>(curves.points.size()) >= model.vlink_goal)
+      break;
+    Eigen::VectorXd next = q;
+    for (int j = model.arm_dof; j < model.dof(); ++j) next[j] += model.joints[j].closing * kStep;
+    next = next.cwiseMax(lower).cwiseMin(upper);
+    if (next == q) break;  // every closing joint at its limit
+    q = next;
+  }
+  size.closed_q = q.tail(model.hand_dof);
+  double aperture = std::numeric_limits<double>::infinity();
+  for (const auto& c : curves.points) aperture = std::min(aperture, inscribed_diameter(c));
+  size.closed_aperture =
+      std::isfinite(aperture) ? std::max(0.0, aperture - size.finger_thickness) : 0.0;
+  return size;
+}
+
+}  // namespace claspplan::robots

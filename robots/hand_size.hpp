@@ -1,0 +1,29 @@
+// The sizes of a hand that decide which loops it can clasp, computed from the robot model (never
+// typed in): how wide a hole its fingers need, and how thick a bar its closed hand can enclose.
+#pragma once
+
+#include <Eigen/Core>
+
+#include "robots/robot_model.hpp"
+
+namespace claspplan::robots {
+
+struct HandSize {
+  /// The widest cross-section of any finger link (the diameter of the circle around it): a hole
+  /// must be at least this wide for the fingers to pass through it (m).
+  double finger_thickness = 0.0;
+  /// The diameter of the largest bar the hand encloses when it is closed just enough to reach its
+  /// virtual-linking goal: the largest circle inside every finger curve closed by its cord, less
+  /// the fingers' own thickness (m). A thicker bar cannot be clasped.
+  double closed_aperture = 0.0;
+  /// The hand joints at that closure (the open pre-shape moved along the closing directions).
+  Eigen::VectorXd closed_q;
+};
+
+/// Computes the sizes above. Finger closing follows each hand joint's `closing` direction in
+/// small steps from the open pre-shape, without an object, until every curve's cord ratio
+/// 1 - cord / closed length (the factor of paper eq. 2) reaches the hand's `vlink_goal`, or the
+/// joints reach their limits.
+HandSize hand_size(const RobotModel& model);
+
+}  // namespace claspplan::robots
