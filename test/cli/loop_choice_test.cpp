@@ -1,0 +1,151 @@
+// Loop choice for a hand (issue "Real objects"): a container's mouth is never a clasp, a jug's
+// handle is chosen by every hand, and a hole narrower than a hand's fingers is refused with the
+// reason, in the library and in `claspplan loops --robot`.
+#include <gtest/gtest.h>
+
+#include "examples/objects.hpp"
+#include "perception/depth_render.hpp"
+#include "perception/file_io.hpp"
+#include "perception/pipeline.hpp"
+#include "robots/hand_size.hpp"
+#include "test/support/cli_runner.hpp"
+
+namespace claspplan::test {
+namespace {
+
+const std::vector<std::string> kHands = {"sdh", "dlr", "icub", "armar3"};
+
+// The object on the floor at x = 0.55, seen like purse_1: two depth cameras above the robot's
+// shoulders, 1 mm noise, the floor in the images.
+perception::PerceptionInputs seen_on_floor(perception::TriangleMesh object, double yaw = 0.0) {
+  Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();
+  pose.translate(Eigen::Vector3d(0.55, 0, 0));
+  pose.rotate(Eigen::AngleAxisd(yaw, Eigen::Vector3d::UnitZ()));
+  perception::TriangleMesh scene = perception::transformed(object, pose);
+  perception::append_mesh(scene, objects::ground_plane(2.0, 0.0, {0.5, 0.0}));
+  perception::PerceptionInputs in;
+  perception::DepthNoise noise;
+  noise.sigma = 0.001;
+  for (const Eigen::Vector3d& position :
+       {Eigen::Vector3d(0.2, -0.6, 0.85), Eigen::Vector3d(0.2, 0.6, 0.85)}) {
+    perception::DepthView v;
+    v.camera = objects::kinect_camera(position, {0.55, 0, 0.15});
+    v.image = perception::render_depth(scene, v.camera, noise);
+    in.depth_views.push_back(v);
+    ++noise.seed;
+  }
+  return in;
+}
+
+perception::ObjectModel perceive(const perception::PerceptionInputs& in, const std::string& hand) {
+  perception::PerceptionOptions o;
+  o.workspace =
+      Eigen::AlignedBox3d(Eigen::Vector3d(0.2, -0.4, 0.003), Eigen::Vector3d(0.95, 0.4, 0.7));
+  if (!hand.empty()) {
+    const robots::HandSize size = robots::hand_size(robots::load_robot("kr5_" + hand));
+    o.finger_thickness = size.finger_thickness;
+    o.closed_aperture = size.closed_aperture;
+  }
+  return perception::build_object_model(in, o);
+}
+
+objects::Container jug() {
+  objects::Container c;
+  c.radius = 0.06;
+  c.height = 0.22;
+  c.handle_radius = 0.075;
+  c.handle_tube = 0.01;
+  return c;
+}
+
+TEST(LoopChoice, CupMouthIsRejectedForEveryHand) {
+  objects::Container cup;
+  cup.radius = 0.05;
+  cup.height = 0.12;
+  const auto in = seen_on_floor(objects::container(cup));
+  for (const std::string& hand : kHands) {
+    const perception::ObjectModel m = perceive(in, hand);
+    EXPECT_EQ(m.best(), nullptr) << hand << ": " << (m.loops.empty() ? "" : m.loops[0].reason);
+    EXPECT_TRUE(m.targets.empty()) << hand;
+  }
+}
+
+TEST(LoopChoice, JugHandleIsChosenAndItsMouthRejectedForEveryHand) {
+  const objects::Container c = jug();
+  // The handle towards +y, its hole facing the cameras.
+  const auto in = seen_on_floor(objects::container(c), M_PI / 2);
+  const Eigen::Vector3d handle =
+      Eigen::Vector3d(0.55, 0, 0) +
+      Eigen::AngleAxisd(M_PI / 2, Eigen::Vector3d::UnitZ()) * objects::container_handle_centre(c);
+  for (const std::string& hand : kHands) {
+    const perception::ObjectModel m = perceive(in, hand);
+    ASSERT_NE(m.best(), nullptr) << hand;
+    EXPECT_LT((m.best()->centre - handle).norm(), 0.04) << hand << ": " << m.best()->reason;
+    // The mouth was found and refused as a cavity's opening.
+    bool mouth = false;
+    for (const auto& l : m.loops) mouth |= l.verdict == "cavity" && l.centre.z() > 0.18;
+    EXPECT_TRUE(mouth) << hand;
+    // Targets lie on the handle, where the closed hand fits around it.
+    ASSERT_FALSE(m.targets.empty());
+    for (const auto& t : m.targets) EXPECT_GT(t.p.y(), 0.055) << hand;
+  }
+}
+
+TEST(LoopChoice, HandSizesComeFromTheModel) {
+  const robots::HandSize sdh = robots::hand_size(robots::load_robot("kr5_sdh"));
+  const robots::HandSize icub = robots::hand_size(robots::load_robot("kr5_icub"));
+  EXPECT_NEAR(sdh.finger_thickness, 0.029, 1e-9);  // the SDH fingers' capsules, radius 14.5 mm
+  EXPECT_LT(icub.finger_thickness, sdh.finger_thickness);
+  EXPECT_GT(sdh.closed_aperture, 0.03);
+  EXPECT_LT(icub.closed_aperture, sdh.closed_aperture);
+}
+
+TEST(LoopChoice, MorePointsNeverMeanMoreLoops) {
+  const auto in = seen_on_floor(objects::purse());
+  std::vector<int> loops;
+  for (int n : {2000, 10000, 40000}) {
+    perception::PerceptionOptions o;
+    o.points = n;
+    o.workspace =
+        Eigen::AlignedBox3d(Eigen::Vector3d(0.2, -0.4, 0.003), Eigen::Vector3d(0.95, 0.4, 0.7));
+    const perception::ObjectModel m = perception::build_object_model(in, o);
+    int claspable = 0;
+    for (const auto& l : m.loops) claspable += l.claspable;
+    EXPECT_EQ(claspable, 1) << n << " points";
+    loops.push_back(static_cast<int>(m.loops.size()));
+  }
+  EXPECT_LE(loops[1], loops[0]);
+  EXPECT_LE(loops[2], loops[0]);
+}
+
+TEST(LoopChoice, LoopsRobotRefusesAHoleNarrowerThanTheFingers) {
+  TempDir dir;
+  // A ring whose hole (26 mm) admits the iCub's fingers (14 mm) but not the SDH's (29 mm).
+  Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();
+  pose.translate(Eigen::Vector3d(0.55, 0, 0.2));
+  pose.rotate(Eigen::AngleAxisd(M_PI / 2, Eigen::Vector3d::UnitY()));
+  const std::string mesh = dir.file("ring.obj");
+  perception::write_obj(objects::torus_mesh(0.019, 0.006, pose), mesh);
+  const auto loops = [&](const std::string& robot) {
+    const CliResult r = run_cli({"loops", mesh, "--robot", robot, "--json"});
+    EXPECT_EQ(r.exit_code, 0) << r.err;
+    return nlohmann::json::parse(r.out);
+  };
+  const auto sdh = loops("kr5_sdh");
+  bool refused = false;
+  for (const auto& l : sdh["loops"]) {
+    if (l["verdict"] == "hand_too_large") {
+      refused = true;
+      EXPECT_NE(l["reason"].get<std::string>().find("too narrow for this hand"), std::string::npos);
+    }
+    EXPECT_FALSE(l["claspable"].get<bool>());
+  }
+  EXPECT_TRUE(refused);
+  EXPECT_NEAR(sdh["hand"]["finger_thickness"].get<double>(), 0.029, 1e-6);
+  bool icub_claspable = false;
+  for (const auto& l : loops("kr5_icub")["loops"]) icub_claspable |= l["claspable"].get<bool>();
+  EXPECT_TRUE(icub_claspable);
+}
+
+}  // namespace
+}  // namespace claspplan::test
