@@ -208,6 +208,20 @@ Motion plan_clasp(Scenario& s, const SceneGeometry& scene, servo::ClaspControlle
   result["nodes"] = plan.nodes;
   result["control_steps"] = plan.control_steps;
   result["clasp_candidates"] = candidates;
+  const tsrrt::ConnectOutcomes& o = plan.outcomes;
+  const json outcomes = {{"attempts", o.attempts},
+                         {"accepted", o.accepted},
+                         {"rejected", o.rejected},
+                         {"contact_object", o.contact_object},
+                         {"contact_environment", o.contact_environment},
+                         {"self_collision", o.self_collision},
+                         {"joint_limits", o.joint_limits},
+                         {"stall", o.stall},
+                         {"step_cap", o.step_cap},
+                         {"time_limit", o.time_limit},
+                         {"detours", o.detours},
+                         {"extend_collisions", o.extend_collisions}};
+  result["connect_outcomes"] = outcomes;
   if (candidates > 0) result["verification"] = verification_json(check);
 
   Motion m;
@@ -216,6 +230,7 @@ Motion plan_clasp(Scenario& s, const SceneGeometry& scene, servo::ClaspControlle
                {"seconds", seconds},
                {"clasp_candidates", candidates},
                {"success", plan.success}};
+  m.summary["connect_outcomes"] = outcomes;
   if (!plan.success) {
     m.summary["verified"] = false;
     m.summary["reason"] = plan.reason;

@@ -364,11 +364,12 @@ Scenario load_scenario_text(const std::string& text, const std::string& path,
       ctl.integer("stall_steps", s.controller_run.stall_steps, 1, 1000000);
 
   const Reader pl = r.child("planner");
-  pl.only({"random_probability", "pre_expansions", "max_cycles", "time_limit", "extend_steps",
-           "connect_steps", "stall_steps", "linking_scale", "sample_min", "sample_max",
-           "goal_linking", "position_tolerance", "collision_resolution", "prune_attempts",
-           "closing_step", "closing_clearance", "verify_sequences", "verify_motions",
-           "verify_in_search"});
+  pl.only({"random_probability",   "pre_expansions", "max_cycles",       "time_limit",
+           "extend_steps",         "connect_steps",  "stall_steps",      "linking_scale",
+           "sample_min",           "sample_max",     "goal_linking",     "position_tolerance",
+           "collision_resolution", "prune_attempts", "closing_step",     "closing_clearance",
+           "verify_sequences",     "verify_motions", "verify_in_search", "backoff_steps",
+           "detour_steps"});
   auto& o = s.planning;
   auto& tp = o.planner;
   tp.random_probability = pl.number("random_probability", tp.random_probability, 0.0, 1.0);
@@ -378,6 +379,8 @@ Scenario load_scenario_text(const std::string& text, const std::string& path,
   tp.extend_steps = pl.integer("extend_steps", tp.extend_steps, 1, 10000);
   tp.connect_steps = pl.integer("connect_steps", tp.connect_steps, 1, 1000000);
   tp.stall_steps = pl.integer("stall_steps", tp.stall_steps, 1, 1000000);
+  tp.backoff_steps = pl.integer("backoff_steps", tp.backoff_steps, 0, 1000000);
+  tp.detour_steps = pl.integer("detour_steps", tp.detour_steps, 0, 1000000);
   tp.linking_scale = pl.number("linking_scale", tp.linking_scale, 0.0, 100.0);
   if (pl.has("sample_min") != pl.has("sample_max")) {
     pl.fail("sample_min", "give both sample_min and sample_max, or neither");

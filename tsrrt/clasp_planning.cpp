@@ -1,6 +1,7 @@
 #include "tsrrt/clasp_planning.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <limits>
 #include <random>
 #include <thread>
@@ -20,7 +21,18 @@ ClaspProblem::ClaspProblem(servo::ClaspController& controller, robots::Collision
       goal_linking_(goal_linking),
       position_tolerance_(position_tolerance),
       resolution_(resolution),
-      acceptance_(std::move(acceptance)) {}
+      acceptance_(std::move(acceptance)) {
+  // The open hand's reach from its centre.
+  const robots::RobotModel& model = controller_.model();
+  robots::RobotData data(model);
+  robots::FingerCurvesData curves;
+  robots::finger_curves(model, model.home, data, curves, false);
+  Eigen::AlignedBox3d box;
+  for (const auto& curve : curves.points)
+    for (const auto& point : curve) box.extend(point);
+  const double reach = box.isEmpty() ? 0.0 : 0.5 * box.diagonal().norm();
+  approach_distance_ = std::clamp(reach + 0.02, 0.08, 0.12);
+}
 
 TaskPoint ClaspProblem::project(const Eigen::VectorXd& q) {
   const servo::TaskState x = controller_.project(q);
@@ -33,11 +45,58 @@ Eigen::VectorXd ClaspProblem::control(const Eigen::VectorXd& q0, const TaskPoint
   // The alignment task keeps its last direction only along one continuous trajectory.
   if (last_q_.size() != q0.size() || last_q_ != q0) controller_.forget_direction();
   last_q_ = controller_.step(q0, x1.position, x1.linking);
+  limited_ = false;
+  const robots::RobotModel& model = controller_.model();
+  for (int j = 0; j < model.dof() && !limited_; ++j) {
+    const robots::Joint& joint = model.joints[j];
+    limited_ = !joint.hand && last_q_[j] == q0[j] &&
+               (q0[j] <= joint.lower + kLimitMargin || q0[j] >= joint.upper - kLimitMargin);
+  }
   return last_q_;
 }
 
-bool ClaspProblem::motion_free(const Eigen::VectorXd& q0, const Eigen::VectorXd& q1) {
-  return world_.motion_free(q0, q1, resolution_);
+MotionCheck ClaspProblem::check_motion(const Eigen::VectorXd& q0, const Eigen::VectorXd& q1) {
+  robots::CollisionReport report;
+  if (world_.motion_free(q0, q1, resolution_, &report)) return MotionCheck::kFree;
+  if (report.second == "object") return MotionCheck::kObject;
+  if (report.second_link >= 0) return MotionCheck::kSelf;
+  return MotionCheck::kEnvironment;  // "box <i>", "cylinder <i>"
+}
+
+std::vector<Eigen::Vector3d> clasp_approaches(const servo::Points& loop,
+                                              const servo::ClaspTarget& target, double distance) {
+  // The loop's centroid, weighting each point by its two half segments (uneven sampling).
+  Eigen::Vector3d centre = Eigen::Vector3d::Zero();
+  double total = 0.0;
+  const std::size_t n = loop.size();
+  for (std::size_t i = 0; i < n; ++i) {
+    const double w = (loop[(i + 1) % n] - loop[i]).norm();
+    centre += w * 0.5 * (loop[i] + loop[(i + 1) % n]);
+    total += w;
+  }
+  centre = total > 0.0 ? Eigen::Vector3d(centre / total) : target.point;
+  const Eigen::Vector3d t = target.tangent.normalized();
+  Eigen::Vector3d r = target.point - centre;
+  r -= t * t.dot(r);
+  r = r.norm() > 1e-9 ? Eigen::Vector3d(r.normalized()) : t.unitOrthogonal();
+  const Eigen::Vector3d normal = t.cross(r);
+  const double s = std::sqrt(0.5);
+  const std::pair<double, double> directions[] = {{1, 0}, {0, 1}, {0, -1}, {s, s}, {s, -s}};
+  std::vector<Eigen::Vector3d> points;
+  for (const auto& [c, sn] : directions) {
+    points.push_back(target.point + distance * (c * r + sn * normal));
+  }
+  return points;
+}
+
+std::vector<TaskPoint> ClaspProblem::approaches(int goal) {
+  const auto& targets = controller_.targets();
+  if (goal < 0 || goal >= static_cast<int>(targets.size())) return {};
+  std::vector<TaskPoint> points;
+  for (const auto& p : clasp_approaches(controller_.loop(), targets[goal], approach_distance_)) {
+    points.push_back({p, 0.0});  // the hand open on the way
+  }
+  return points;
 }
 
 bool ClaspProblem::reached(const TaskPoint& x, const TaskPoint& goal) const {

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cstdio>
 #include <random>
 #include <set>
 
@@ -17,6 +18,90 @@ namespace {
 
 using Clock = std::chrono::steady_clock;
 
+// How one TS-CONNECT-GOAL attempt ended.
+enum class Ending {
+  kAccepted,
+  kRejected,
+  kObject,
+  kEnvironment,
+  kSelf,
+  kJointLimits,
+  kStall,
+  kStepCap,
+  kTimeLimit,
+};
+
+int& counter(ConnectOutcomes& o, Ending e) {
+  switch (e) {
+    case Ending::kAccepted:
+      return o.accepted;
+    case Ending::kRejected:
+      return o.rejected;
+    case Ending::kObject:
+      return o.contact_object;
+    case Ending::kEnvironment:
+      return o.contact_environment;
+    case Ending::kSelf:
+      return o.self_collision;
+    case Ending::kJointLimits:
+      return o.joint_limits;
+    case Ending::kStall:
+      return o.stall;
+    case Ending::kStepCap:
+      return o.step_cap;
+    case Ending::kTimeLimit:
+      break;
+  }
+  return o.time_limit;
+}
+
+Ending collision_ending(MotionCheck c) {
+  switch (c) {
+    case MotionCheck::kEnvironment:
+      return Ending::kEnvironment;
+    case MotionCheck::kSelf:
+      return Ending::kSelf;
+    default:
+      return Ending::kObject;
+  }
+}
+
+std::string format_seconds(double s) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%g", s);
+  return text;
+}
+
+// "212 connect attempts; most ended in contact with the object (151); 12 detours".
+std::string describe(const ConnectOutcomes& o) {
+  if (o.attempts == 0) return "no connect attempts";
+  std::string text =
+      std::to_string(o.attempts) + (o.attempts == 1 ? " connect attempt" : " connect attempts");
+  // The failed endings in order of precedence on ties.
+  const std::pair<int, const char*> endings[] = {
+      {o.contact_object, "ended in contact with the object"},
+      {o.contact_environment, "ended in contact with the environment"},
+      {o.self_collision, "ended in self-collision"},
+      {o.joint_limits, "ended at the joint limits"},
+      {o.stall, "stopped making progress"},
+      {o.rejected, "reached the goal but were rejected (insecure clasp)"},
+      {o.step_cap, "ran out of steps"},
+      {o.time_limit, "were cut short by the time limit"},
+  };
+  const auto* main = &endings[0];
+  for (const auto& e : endings)
+    if (e.first > main->first) main = &e;
+  if (main->first > 0) {
+    text += o.attempts == 1 ? "; it " : "; most ";
+    text += main->second + std::string(" (") + std::to_string(main->first) + ")";
+  }
+  if (o.rejected > 0 && main->second != endings[5].second) {
+    text += "; " + std::to_string(o.rejected) + " reached the goal but were rejected";
+  }
+  text += "; " + std::to_string(o.detours) + (o.detours == 1 ? " detour" : " detours");
+  return text;
+}
+
 class TsRrt {
  public:
   TsRrt(PlanningProblem& problem, const std::vector<TaskPoint>& goals, const PlannerParameters& p)
@@ -26,6 +111,9 @@ class TsRrt {
         tree_(p.linking_scale),
         rng_(p.seed),
         tried_(goals.size()),
+        approaches_(goals.size()),
+        asked_(goals.size(), 0),
+        next_approach_(goals.size(), 0),
         start_(Clock::now()) {}
 
   PlanResult run(const Eigen::VectorXd& q_init) {
@@ -44,13 +132,11 @@ class TsRrt {
     }
     if (!result_.success) {
       result_.cycles = std::min(result_.cycles, p_.max_cycles);
-      result_.reason = result_.timed_out
-                           ? "no clasp found within the time limit"
-                           : "no clasp found within " + std::to_string(p_.max_cycles) + " cycles";
-      if (result_.rejected_goals > 0) {
-        result_.reason += " (" + std::to_string(result_.rejected_goals) +
-                          " reached the goal tolerance but were rejected)";
-      }
+      result_.reason =
+          (result_.timed_out
+               ? "no clasp found within the time limit (" + format_seconds(p_.time_limit) + " s)"
+               : "no clasp found within " + std::to_string(p_.max_cycles) + " cycles") +
+          ": " + describe(result_.outcomes);
     }
     result_.nodes = tree_.size();
     for (int i = 0; i < tree_.size(); ++i) {
@@ -78,45 +164,92 @@ class TsRrt {
     return x;
   }
 
-  // Alg. 2: one controlled step from the nearest node toward x; kept when collision-free.
-  void extend(const TaskPoint& x) {
-    int near = tree_.nearest(x);
-    for (int s = 0; s < p_.extend_steps && !out_of_time(); ++s) {
+  // Alg. 2: controlled steps from the nearest node toward x; each kept when collision-free.
+  void extend(const TaskPoint& x) { extend_from(tree_.nearest(x), x, p_.extend_steps, 0.0); }
+
+  // Up to `steps` controlled steps from node `near` toward x, until a collision or within `reach`
+  // metres of x. Returns the last node.
+  int extend_from(int near, const TaskPoint& x, int steps, double reach) {
+    for (int s = 0; s < steps && !out_of_time(); ++s) {
+      if (reach > 0.0 && (tree_[near].x.position - x.position).norm() <= reach) break;
       const Eigen::VectorXd q_new = problem_.control(tree_[near].q, tree_[near].x, x);
       ++result_.control_steps;
-      if (!problem_.motion_free(tree_[near].q, q_new)) return;
+      if (problem_.check_motion(tree_[near].q, q_new) != MotionCheck::kFree) {
+        ++result_.outcomes.extend_collisions;
+        break;
+      }
       near = tree_.add(q_new, problem_.project(q_new), near);
+    }
+    return near;
+  }
+
+  // Alg. 3 from the nearest node not yet used for goal g; an attempt that ends against the object
+  // is followed by a detour.
+  void connect(int g) {
+    const int near = tree_.nearest(goals_[g], [&](int i) { return tried_[g].count(i) == 0; });
+    if (near < 0) return;
+    std::vector<int> nodes;
+    const Ending ending = attempt(g, near, nodes);
+    if (ending == Ending::kObject || ending == Ending::kStall || ending == Ending::kJointLimits) {
+      detour(g, nodes);
     }
   }
 
-  // Alg. 3: iterate the controller toward goal g from the nearest node not yet used for g, until a
-  // collision, the goal, the step cap, or no progress.
-  void connect(int g) {
+  // Another approach direction after a failed attempt along `nodes`: back off along the attempt,
+  // extend toward goal g's next approach point, and connect to g from there.
+  void detour(int g, const std::vector<int>& nodes) {
+    if (out_of_time()) return;
+    if (!asked_[g]) approaches_[g] = problem_.approaches(g), asked_[g] = 1;
+    if (approaches_[g].empty()) return;
+    const TaskPoint& via = approaches_[g][next_approach_[g]++ % approaches_[g].size()];
+    ++result_.outcomes.detours;
+    const int back = std::max(0, static_cast<int>(nodes.size()) - 1 - p_.backoff_steps);
+    const int from = nodes[back];
+    const int end = extend_from(from, via, p_.detour_steps, p_.detour_reach);
+    if (end == from || tried_[g].count(end) != 0) return;  // it would repeat the attempt
+    std::vector<int> again;
+    attempt(g, end, again);
+  }
+
+  // One TS-CONNECT-GOAL attempt: the controller iterated toward goal g from node `near` until a
+  // collision, the goal, the step cap, or no progress. `nodes` gets the attempt's start node and
+  // the nodes it added, in order.
+  Ending attempt(int g, int near, std::vector<int>& nodes) {
+    const Ending ending = run_attempt(g, near, nodes);
+    ++result_.outcomes.attempts;
+    ++counter(result_.outcomes, ending);
+    return ending;
+  }
+
+  Ending run_attempt(int g, int near, std::vector<int>& nodes) {
     const TaskPoint& goal = goals_[g];
-    int near = tree_.nearest(goal, [&](int i) { return tried_[g].count(i) == 0; });
-    if (near < 0) return;
     tried_[g].insert(near);
+    nodes.push_back(near);
     double best_distance = (tree_[near].x.position - goal.position).norm();
     double best_linking = tree_[near].x.linking;
-    int stalled = 0;
-    for (int s = 0; s < p_.connect_steps && !out_of_time(); ++s) {
+    int stalled = 0, limited = 0;
+    for (int s = 0; s < p_.connect_steps; ++s) {
+      if (out_of_time()) return Ending::kTimeLimit;
       const Eigen::VectorXd q_new = problem_.control(tree_[near].q, tree_[near].x, goal);
+      const bool held = problem_.control_limited();
       ++result_.control_steps;
-      if (!problem_.motion_free(tree_[near].q, q_new)) return;
+      const MotionCheck check = problem_.check_motion(tree_[near].q, q_new);
+      if (check != MotionCheck::kFree) return collision_ending(check);
       const TaskPoint x_new = problem_.project(q_new);
       near = tree_.add(q_new, x_new, near);
+      nodes.push_back(near);
       tried_[g].insert(near);  // continuing from it toward g would repeat this attempt
       if (problem_.reached(x_new, goal)) {
         if (!problem_.accept(q_new)) {
           ++result_.rejected_goals;
-          return;  // continuing from here toward g would only hover at the same clasp
+          return Ending::kRejected;  // continuing from here toward g would only hover there
         }
         result_.success = true;
         result_.goal_index = g;
         result_.path = tree_.path_to(near);
         for (int i = near; i >= 0; i = tree_[i].parent) result_.solution_nodes.push_back(i);
         std::reverse(result_.solution_nodes.begin(), result_.solution_nodes.end());
-        return;
+        return Ending::kAccepted;
       }
       const double distance = (x_new.position - goal.position).norm();
       const bool progress = distance < best_distance - p_.stall_position ||
@@ -124,8 +257,13 @@ class TsRrt {
       best_distance = std::min(best_distance, distance);
       best_linking = std::max(best_linking, x_new.linking);
       stalled = progress ? 0 : stalled + 1;
-      if (stalled >= p_.stall_steps) return;
+      limited = progress ? 0 : limited + (held ? 1 : 0);
+      // Stuck: at the joint limits when the controller held joints in most of the stalled steps.
+      if (stalled >= p_.stall_steps) {
+        return 2 * limited >= stalled ? Ending::kJointLimits : Ending::kStall;
+      }
     }
+    return Ending::kStepCap;
   }
 
   PlanningProblem& problem_;
@@ -133,7 +271,10 @@ class TsRrt {
   const PlannerParameters& p_;
   TaskTree tree_;
   std::mt19937_64 rng_;
-  std::vector<std::set<int>> tried_;  // nodes already extended toward each goal
+  std::vector<std::set<int>> tried_;                // nodes already extended toward each goal
+  std::vector<std::vector<TaskPoint>> approaches_;  // each goal's detour points, once asked
+  std::vector<char> asked_;
+  std::vector<std::size_t> next_approach_;  // each goal's next detour point (cycling)
   Clock::time_point start_;
   PlanResult result_;
 };

@@ -15,8 +15,9 @@ namespace claspplan::tsrrt {
 struct PlannerParameters {
   double random_probability = 0.1;  ///< P: chance of a random TS-EXTEND instead of goal connects
   int pre_expansions = 50;          ///< n: random extensions before the main loop
-  int max_cycles = 300;             ///< K
-  double time_limit = 0.0;          ///< wall-clock limit in seconds; 0 = none
+  /// K. Effectively unbounded by default: the time limit bounds the search.
+  int max_cycles = 100000;
+  double time_limit = 10.0;  ///< wall-clock limit in seconds; 0 = none
   /// Controller steps per TS-EXTEND, each kept as a node: with the controller's 2 cm position
   /// cap a one-step extension barely explores, so an extension runs up to ~20 cm.
   int extend_steps = 10;
@@ -24,6 +25,13 @@ struct PlannerParameters {
   int stall_steps = 25;          ///< a connect attempt ends after this many steps without progress
   double stall_position = 5e-4;  ///< metres of approach that count as progress
   double stall_linking = 2e-3;   ///< virtual linking gained that counts as progress
+  /// A connect attempt that ends against the object (contact, stall or joint limits) is followed
+  /// by a detour (PlanningProblem::approaches()): back off this many nodes along the attempt, ...
+  int backoff_steps = 5;
+  /// ... extend toward the detour point for up to this many controller steps (each a node; the
+  /// extension stops within `detour_reach` metres of the point) and connect to the goal again.
+  int detour_steps = 20;
+  double detour_reach = 0.01;
   /// RANDOM-TS-SAMPLE: positions uniform in this box (world frame), linking uniform in [0, 1].
   Eigen::Vector3d sample_min = Eigen::Vector3d::Constant(-1.0);
   Eigen::Vector3d sample_max = Eigen::Vector3d::Constant(1.0);
@@ -31,15 +39,41 @@ struct PlannerParameters {
   std::uint64_t seed = 1;
 };
 
+/// How the TS-CONNECT-GOAL attempts ended (each attempt exactly one way), and the rest of the
+/// search's events.
+struct ConnectOutcomes {
+  int attempts = 0;             ///< connect attempts made; the endings below add up to it
+  int accepted = 0;             ///< goal reached and accepted
+  int rejected = 0;             ///< goal reached, but PlanningProblem::accept() refused it
+  int contact_object = 0;       ///< the next step touched the object
+  int contact_environment = 0;  ///< ... the static environment
+  int self_collision = 0;       ///< ... the robot itself
+  int joint_limits = 0;         ///< no progress while the controller held joints at their limits
+  int stall = 0;                ///< no progress otherwise (stall_steps steps)
+  int step_cap = 0;             ///< connect_steps steps without reaching the goal
+  int time_limit = 0;           ///< cut short by the time limit
+  int detours = 0;              ///< detours toward an approach point after a failed attempt
+  int extend_collisions = 0;    ///< TS-EXTEND steps (random or detour) that ended in a collision
+
+  /// The sum of the endings (equals `attempts`).
+  int endings() const {
+    return accepted + rejected + contact_object + contact_environment + self_collision +
+           joint_limits + stall + step_cap + time_limit;
+  }
+};
+
 struct PlanResult {
   bool success = false;
-  std::string reason;                 ///< why the search ended without a goal
+  /// Why the search ended without a goal (one line: the limit, the connect attempts, how most
+  /// of them ended, the detours).
+  std::string reason;
   std::vector<Eigen::VectorXd> path;  ///< start to goal configuration, when successful
   int goal_index = -1;                ///< which goal was reached
   int cycles = 0;                     ///< cycles of Alg. 1's loop after the pre-expansion
   int nodes = 0;
   int control_steps = 0;
   int rejected_goals = 0;  ///< nodes in goal tolerance that PlanningProblem::accept() refused
+  ConnectOutcomes outcomes;
   bool timed_out = false;
   /// The tree, for pictures: each node's task point and parent.
   std::vector<TaskPoint> tree_points;

@@ -1,8 +1,10 @@
 // What the Task-Space RRT needs of a clasp problem: the task-space projection, the local
 // controller, collision checking of motions and the goal test (paper Sec. IV-D). The planner
-// (tsrrt/planner.hpp) is written against this interface only; tsrrt/clasp_problem.hpp binds it to a
-// robot, an object loop and the servo controller.
+// (tsrrt/planner.hpp) is written against this interface only; tsrrt/clasp_planning.hpp binds it to
+// a robot, an object loop and the servo controller.
 #pragma once
+
+#include <vector>
 
 #include <Eigen/Core>
 
@@ -13,6 +15,14 @@ namespace claspplan::tsrrt {
 struct TaskPoint {
   Eigen::Vector3d position = Eigen::Vector3d::Zero();
   double linking = 0.0;
+};
+
+/// What a checked motion ran into, if anything.
+enum class MotionCheck {
+  kFree,         ///< collision-free
+  kObject,       ///< the robot touches the object (to be clasped)
+  kEnvironment,  ///< the robot touches the static environment (table, walls, obstacles)
+  kSelf,         ///< the robot touches itself
 };
 
 class PlanningProblem {
@@ -26,8 +36,19 @@ class PlanningProblem {
   virtual Eigen::VectorXd control(const Eigen::VectorXd& q0, const TaskPoint& x0,
                                   const TaskPoint& x1) = 0;
 
+  /// Whether the last control() step held a joint at its limit that the controller wanted to
+  /// move further: a connect attempt that stops making progress while this is so ends at the
+  /// joint limits rather than in a plain stall.
+  virtual bool control_limited() const { return false; }
+
+  /// COLLISION-FREE with the reason: the straight joint-space motion q0 → q1 is free
+  /// (MotionCheck::kFree), or what it runs into first.
+  virtual MotionCheck check_motion(const Eigen::VectorXd& q0, const Eigen::VectorXd& q1) = 0;
+
   /// COLLISION-FREE: the straight joint-space motion q0 → q1 is free of collisions.
-  virtual bool motion_free(const Eigen::VectorXd& q0, const Eigen::VectorXd& q1) = 0;
+  bool motion_free(const Eigen::VectorXd& q0, const Eigen::VectorXd& q1) {
+    return check_motion(q0, q1) == MotionCheck::kFree;
+  }
 
   /// TS-TOLERANCE: x satisfies the goal x_goal (virtual linking, optionally also position).
   virtual bool reached(const TaskPoint& x, const TaskPoint& goal) const = 0;
@@ -38,6 +59,17 @@ class PlanningProblem {
   virtual bool accept(const Eigen::VectorXd& q) {
     (void)q;
     return true;
+  }
+
+  /// Detour points for goal `goal` (an index into the planner's goals): places from which the
+  /// goal may be approached from other directions. When a connect attempt toward the goal ends
+  /// against the object (contact, a stall or the joint limits), the planner backs off along the
+  /// attempt, extends toward the next of these (cycling through them per goal) and connects to
+  /// the goal again from there. None by default: failed attempts are then simply retried from
+  /// other nodes.
+  virtual std::vector<TaskPoint> approaches(int goal) {
+    (void)goal;
+    return {};
   }
 };
 

@@ -152,6 +152,21 @@ TEST(Scenario, NoClaspableLoopIsExitOne) {
 
 // --- Planned clasps (TS-RRT issue) --------------------------------------------------------------
 
+// The search's connect outcomes: named counts whose endings add up to the attempts.
+void expect_connect_outcomes(const json& o) {
+  ASSERT_TRUE(o.is_object()) << o;
+  int endings = 0;
+  for (const char* key : {"accepted", "rejected", "contact_object", "contact_environment",
+                          "self_collision", "joint_limits", "stall", "step_cap", "time_limit"}) {
+    ASSERT_TRUE(o.contains(key)) << key;
+    endings += o[key].get<int>();
+  }
+  for (const char* key : {"attempts", "detours", "extend_collisions"}) {
+    ASSERT_TRUE(o.contains(key)) << key;
+  }
+  EXPECT_EQ(endings, o["attempts"].get<int>());
+}
+
 // Checks a planned result: the path starts at the scenario's start, every segment is free at a
 // resolution finer than the planner's (0.02 rad), and the final pose ends the path.
 void expect_collision_free_path(const json& result) {
@@ -205,7 +220,11 @@ TEST_P(PlannedClasp, IsVerifiedAndCollisionFree) {
   for (const char* key : {"cycles", "nodes", "seconds", "virtual_linking", "out"}) {
     EXPECT_TRUE(s.contains(key)) << key;
   }
+  expect_connect_outcomes(s["connect_outcomes"]);
+  EXPECT_EQ(s["connect_outcomes"]["accepted"], 1);
   const json result = read_json(dir.file("out/result.json"));
+  expect_connect_outcomes(result["connect_outcomes"]);
+  EXPECT_EQ(result["connect_outcomes"], s["connect_outcomes"]);
   EXPECT_TRUE(result["verification"]["secure"].get<bool>());
   EXPECT_EQ(result["verification"]["escaped_sequences"], 0);
   expect_collision_free_path(result);
@@ -311,6 +330,7 @@ TEST(Planner, TimeLimitIsRespectedWithinTenPercent) {
   EXPECT_LE(s["seconds"].get<double>(), 3.3);
   EXPECT_GE(s["seconds"].get<double>(), 3.0);
   EXPECT_NE(s["reason"].get<std::string>().find("time limit"), std::string::npos);
+  expect_connect_outcomes(s["connect_outcomes"]);
 }
 
 TEST(Planner, UnreachableLoopIsExitOneWithAReason) {
@@ -319,7 +339,18 @@ TEST(Planner, UnreachableLoopIsExitOneWithAReason) {
                                         "planner: {pre_expansions: 20, max_cycles: 30}\n");
   const CliResult r = run_cli({"run", path, "--out", dir.file("out"), "--json"});
   EXPECT_EQ(r.exit_code, 1) << r.err;
-  EXPECT_NE(r.json()["reason"].get<std::string>().find("no clasp found"), std::string::npos);
+  const json s = r.json();
+  const std::string reason = s["reason"].get<std::string>();
+  // One line: the limit, the attempts, how most of them ended, the detours.
+  EXPECT_EQ(reason.find("no clasp found within 30 cycles: "), 0u) << reason;
+  EXPECT_NE(reason.find(std::to_string(s["connect_outcomes"]["attempts"].get<int>()) +
+                        " connect attempt"),
+            std::string::npos)
+      << reason;
+  EXPECT_NE(reason.find("detour"), std::string::npos) << reason;
+  EXPECT_EQ(reason.find('\n'), std::string::npos) << reason;
+  expect_connect_outcomes(s["connect_outcomes"]);
+  expect_connect_outcomes(read_json(dir.file("out/result.json"))["connect_outcomes"]);
   EXPECT_TRUE(std::filesystem::exists(dir.file("out/result.json")));
   EXPECT_TRUE(std::filesystem::exists(dir.file("out/tree.png")));
 }

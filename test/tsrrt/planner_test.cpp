@@ -1,8 +1,10 @@
 // BUILD-TS-RRT on a toy problem: a point in the plane with a "hand" coordinate that closes only
-// near the goal, and a wall between start and goal.
+// near the goal, a wall (environment) between start and goal, and optionally an "object" block in
+// front of the goal and a joint limit.
 #include "tsrrt/planner.hpp"
 
 #include <chrono>
+#include <limits>
 
 #include <gtest/gtest.h>
 
@@ -14,7 +16,10 @@ using tsrrt::TaskPoint;
 // q = (x, y, closure). The task position is (x, y, 0); the linking is the closure.
 class ToyProblem : public tsrrt::PlanningProblem {
  public:
-  bool wall = true;
+  bool wall = true;     // environment: x in (0.4, 0.6), y < 0.8
+  bool object = false;  // the object: x in (0.88, 0.92), |y| < 0.1, in front of (1, 0)
+  double y_max = std::numeric_limits<double>::infinity();  // a joint limit on y
+  std::vector<TaskPoint> detours;                          // approaches() of every goal
   int checks = 0;
 
   TaskPoint project(const Eigen::VectorXd& q) override {
@@ -31,22 +36,38 @@ class ToyProblem : public tsrrt::PlanningProblem {
     if ((x1.position - x0.position).norm() < 0.05) {
       q[2] += std::clamp(x1.linking - x0.linking, -0.05, 0.05);
     }
+    limited = q[1] > y_max;  // held at the limit
+    q[1] = std::min(q[1], y_max);
     return q;
   }
-  bool blocked(const Eigen::VectorXd& q) const {
-    return wall && q[0] > 0.4 && q[0] < 0.6 && q[1] < 0.8;
+  bool control_limited() const override { return limited; }
+  tsrrt::MotionCheck collision(const Eigen::VectorXd& q) const {
+    if (wall && q[0] > 0.4 && q[0] < 0.6 && q[1] < 0.8) return tsrrt::MotionCheck::kEnvironment;
+    if (object && q[0] > 0.88 && q[0] < 0.92 && std::abs(q[1]) < 0.1) {
+      return tsrrt::MotionCheck::kObject;
+    }
+    return tsrrt::MotionCheck::kFree;
   }
-  bool motion_free(const Eigen::VectorXd& q0, const Eigen::VectorXd& q1) override {
+  bool blocked(const Eigen::VectorXd& q) const { return collision(q) != tsrrt::MotionCheck::kFree; }
+  tsrrt::MotionCheck check_motion(const Eigen::VectorXd& q0, const Eigen::VectorXd& q1) override {
     ++checks;
     const int n = 1 + static_cast<int>((q1 - q0).head<2>().norm() / 0.005);
     for (int i = 0; i <= n; ++i) {
-      if (blocked(q0 + (q1 - q0) * (static_cast<double>(i) / n))) return false;
+      const auto c = collision(q0 + (q1 - q0) * (static_cast<double>(i) / n));
+      if (c != tsrrt::MotionCheck::kFree) return c;
     }
-    return true;
+    return tsrrt::MotionCheck::kFree;
+  }
+  std::vector<TaskPoint> approaches(int goal) override {
+    (void)goal;
+    return detours;
   }
   bool reached(const TaskPoint& x, const TaskPoint& goal) const override {
     return x.linking >= 0.8 && (x.position - goal.position).norm() < 0.02;
   }
+
+ private:
+  bool limited = false;
 };
 
 tsrrt::PlannerParameters toy_parameters() {
@@ -56,6 +77,7 @@ tsrrt::PlannerParameters toy_parameters() {
   p.pre_expansions = 20;
   p.max_cycles = 2000;
   p.random_probability = 0.5;
+  p.time_limit = 0.0;  // bounded by cycles: no test depends on the clock
   p.seed = 11;
   return p;
 }
@@ -120,6 +142,7 @@ TEST(TsRrt, UnreachableGoalEndsWithAReason) {
   EXPECT_FALSE(r.success);
   EXPECT_EQ(r.cycles, 60);
   EXPECT_NE(r.reason.find("60 cycles"), std::string::npos) << r.reason;
+  EXPECT_FALSE(r.timed_out);
 }
 
 TEST(TsRrt, TimeLimitIsRespectedWithinTenPercent) {
@@ -137,6 +160,118 @@ TEST(TsRrt, TimeLimitIsRespectedWithinTenPercent) {
   EXPECT_TRUE(r.timed_out);
   EXPECT_GE(elapsed, 0.5);
   EXPECT_LE(elapsed, 0.55);
+}
+
+TEST(TsRrt, ConnectOutcomesAddUpToTheAttempts) {
+  ToyProblem toy;
+  const auto r = tsrrt::build_ts_rrt(toy, kStart, kGoals, toy_parameters());
+  ASSERT_TRUE(r.success) << r.reason;
+  const tsrrt::ConnectOutcomes& o = r.outcomes;
+  EXPECT_GT(o.attempts, 1);
+  EXPECT_EQ(o.endings(), o.attempts);
+  EXPECT_EQ(o.accepted, 1);
+  EXPECT_GE(o.contact_environment, 1);  // the wall
+  EXPECT_EQ(o.contact_object, 0);
+  EXPECT_EQ(o.self_collision, 0);
+  EXPECT_EQ(o.detours, 0);  // the toy offers no approaches
+  EXPECT_GT(o.extend_collisions, 0);
+
+  // A failed search: the same sum, and a reason naming the main cause.
+  const std::vector<TaskPoint> inside_wall = {{Eigen::Vector3d(0.5, 0.0, 0.0), 1.0}};
+  auto p = toy_parameters();
+  p.max_cycles = 60;
+  ToyProblem again;
+  const auto f = tsrrt::build_ts_rrt(again, kStart, inside_wall, p);
+  ASSERT_FALSE(f.success);
+  EXPECT_EQ(f.outcomes.endings(), f.outcomes.attempts);
+  EXPECT_EQ(f.outcomes.accepted, 0);
+  EXPECT_GT(f.outcomes.contact_environment, f.outcomes.attempts / 2);
+  const std::string expected =
+      "no clasp found within 60 cycles: " + std::to_string(f.outcomes.attempts) +
+      " connect attempts; most ended in contact with the environment (" +
+      std::to_string(f.outcomes.contact_environment) + "); 0 detours";
+  EXPECT_EQ(f.reason, expected);
+}
+
+// The object right in front of the goal: the direct approach ends in contact with it; the goal is
+// reachable from the sides.
+tsrrt::PlannerParameters detour_parameters() {
+  auto p = toy_parameters();
+  p.pre_expansions = 0;
+  p.random_probability = 0.0;  // connects only: every attempt comes from a contact or a detour
+  p.max_cycles = 50;
+  return p;
+}
+const std::vector<TaskPoint> kGoalBehindObject = {{Eigen::Vector3d(1.0, 0.0, 0.0), 1.0}};
+
+TEST(TsRrt, ContactWithTheObjectLeadsToAnotherApproach) {
+  ToyProblem toy;
+  toy.wall = false;
+  toy.object = true;
+  toy.detours = {{Eigen::Vector3d(1.0, 0.4, 0.0), 0.0},
+                 {Eigen::Vector3d(1.0, -0.4, 0.0), 0.0},
+                 {Eigen::Vector3d(1.3, 0.0, 0.0), 0.0}};
+  const auto r = tsrrt::build_ts_rrt(toy, kStart, kGoalBehindObject, detour_parameters());
+  ASSERT_TRUE(r.success) << r.reason;
+  const tsrrt::ConnectOutcomes& o = r.outcomes;
+  EXPECT_EQ(o.endings(), o.attempts);
+  EXPECT_GE(o.contact_object, 1);  // the direct approach ...
+  EXPECT_GE(o.detours, 1);         // ... is followed by one from another side
+  EXPECT_GE(o.attempts, 2);
+  EXPECT_EQ(o.accepted, 1);
+  // The path leaves the line of the direct approach, around the object, and is collision-free.
+  bool around = false;
+  for (std::size_t i = 0; i + 1 < r.path.size(); ++i) {
+    EXPECT_EQ(toy.check_motion(r.path[i], r.path[i + 1]), tsrrt::MotionCheck::kFree) << i;
+    around |= std::abs(r.path[i][1]) >= 0.1;
+  }
+  EXPECT_TRUE(around);
+  // Deterministic.
+  ToyProblem same = toy;
+  const auto r2 = tsrrt::build_ts_rrt(same, kStart, kGoalBehindObject, detour_parameters());
+  EXPECT_EQ(r2.nodes, r.nodes);
+  EXPECT_EQ(r2.outcomes.attempts, o.attempts);
+  EXPECT_EQ(r2.path, r.path);
+
+  // Without approaches the contact ends the search: no other node is left to connect from.
+  ToyProblem plain;
+  plain.wall = false;
+  plain.object = true;
+  const auto f = tsrrt::build_ts_rrt(plain, kStart, kGoalBehindObject, detour_parameters());
+  EXPECT_FALSE(f.success);
+  EXPECT_EQ(f.outcomes.attempts, 1);
+  EXPECT_EQ(f.outcomes.contact_object, 1);
+  EXPECT_EQ(f.outcomes.detours, 0);
+  EXPECT_NE(f.reason.find("1 connect attempt; it ended in contact with the object (1)"),
+            std::string::npos)
+      << f.reason;
+}
+
+TEST(TsRrt, DetoursCycleThroughTheApproaches) {
+  // The first approach lies behind the object, straight through it: its detour ends in contact
+  // again, and the next attempt's detour takes the next approach.
+  ToyProblem toy;
+  toy.wall = false;
+  toy.object = true;
+  toy.detours = {{Eigen::Vector3d(1.3, 0.0, 0.0), 0.0}, {Eigen::Vector3d(0.95, 0.5, 0.0), 0.0}};
+  const auto r = tsrrt::build_ts_rrt(toy, kStart, kGoalBehindObject, detour_parameters());
+  ASSERT_TRUE(r.success) << r.reason;
+  EXPECT_GE(r.outcomes.detours, 2);
+  EXPECT_GE(r.outcomes.contact_object, 2);
+  EXPECT_EQ(r.outcomes.endings(), r.outcomes.attempts);
+}
+
+TEST(TsRrt, AHeldJointEndsAnAttemptAtTheJointLimits) {
+  ToyProblem toy;
+  toy.wall = false;
+  toy.y_max = 0.1;
+  const std::vector<TaskPoint> high = {{Eigen::Vector3d(1.0, 0.3, 0.0), 1.0}};
+  const auto r = tsrrt::build_ts_rrt(toy, kStart, high, detour_parameters());
+  EXPECT_FALSE(r.success);
+  EXPECT_EQ(r.outcomes.attempts, 1);
+  EXPECT_EQ(r.outcomes.joint_limits, 1);
+  EXPECT_EQ(r.outcomes.stall, 0);
+  EXPECT_NE(r.reason.find("ended at the joint limits (1)"), std::string::npos) << r.reason;
 }
 
 TEST(PathPruning, ShortensAndKeepsTheEnds) {
