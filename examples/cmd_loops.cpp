@@ -148,8 +148,10 @@ int run_loops(const LoopsOptions& o) {
   std::printf("beta1 = %d   d = %.4f m   (%s)\n", model.beta1, model.d, model.d_rule.c_str());
   std::printf("points: %zu (from %d input points)\n", model.cloud.size(), model.input_points);
   if (model.unstable_loops > 0) {
-    std::printf("stable loops: %zu (%d more fill in by d' = %.4f m: sampling gaps, dropped)\n",
-                model.loops.size(), model.unstable_loops, model.persistence_d);
+    std::printf(
+        "stable loops: %zu (%d more fill in by d' = %.4f m: sampling gaps or thin tubes, "
+        "dropped)\n",
+        model.loops.size(), model.unstable_loops, model.persistence_d);
   }
   if (hand) {
     std::printf("hand %s: fingers %.4f m thick, closed aperture %.4f m\n", o.robot.c_str(),

@@ -64,8 +64,6 @@ double closed_length(const std::vector<Eigen::Vector3d>& loop) {
 
 namespace {
 
-// A finger passes a hole this much wider than itself.
-constexpr double kFingerClearance = 0.005;
 // Room a hand needs beyond a hole, before the table, to curl its fingers (m).
 constexpr double kMinRoom = 0.05;
 

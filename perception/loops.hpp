@@ -59,6 +59,8 @@ struct Loop {
 };
 
 constexpr int kBarSamples = 48;
+/// A finger passes a hole this much wider than itself (m).
+constexpr double kFingerClearance = 0.005;
 
 struct RankingOptions {
   double min_hole = 0.03;  ///< metres: a hole narrower than this cannot take a finger

@@ -240,7 +240,12 @@ ObjectModel build_object_model(const PerceptionInputs& in, const PerceptionOptio
   // Stability: drop loops that the next scale fills (sampling gaps, noise).
   std::vector<bool> fills(basis.cycles.size(), false);
   if (o.persistence > 0 && !basis.cycles.empty()) {
-    m.persistence_d = std::max(o.persistence * m.d, 0.5 * o.min_hole);
+    // Holes a finger passes stay open to about their width; thinner tubes and sampling gaps close.
+    // (Never above min_hole, so that a hole too narrow for a large hand is still reported.)
+    const double min_hole = o.finger_thickness > 0
+                                ? std::min(o.min_hole, o.finger_thickness + kFingerClearance)
+                                : o.min_hole;
+    m.persistence_d = std::max(o.persistence * m.d, 0.8 * min_hole);
     std::vector<std::vector<int>> cycles;
     for (const auto& c : basis.cycles) cycles.push_back(c.vertices);
     fills = bounds_in(build_complex(dg, m.persistence_d), cycles);

@@ -13,8 +13,9 @@
 //  3. d: given, or automatic_d() = 3.5 x the mean nearest-neighbour spacing of the N points.
 //  4. K_d from the CGAL 3-D Delaunay triangulation; the exact shortest H1 basis over Z2.
 //  5. Only stable loops are kept: a loop whose class is zero in K_d' (d' = persistence x d, and at
-//     least half of min_hole) is a sampling gap that the next scale fills, not a hole; so more
-//     points (a smaller d) never mean more loops. Holes a finger can pass (>= min_hole) survive.
+//     least 0.8 x the narrowest hole a finger passes: min_hole, or the hand's fingers + 5 mm if
+//     less) is a sampling gap or a thin tube's wall that a coarser scale fills, not a hole a hand
+//     can use; so more points (a smaller d) never mean more loops. Holes a finger can pass survive.
 //  6. Loops ranked (loops.hpp), for the hand if its sizes are given; k clasp targets on the best
 //     loop if it is claspable, where its bar fits the hand.
 #pragma once
@@ -60,7 +61,7 @@ struct PerceptionOptions {
   bool remove_plane = true;       ///< supporting-plane removal for depth input
   int outlier_k = 10;             ///< statistical outlier removal (depth input); 0 = off
   double outlier_stddev = 2.0;
-  /// Loops must persist to d' = max(persistence x d, min_hole / 2); 0 keeps every loop of K_d.
+  /// Loops must persist to d' = max(persistence x d, 0.8 x narrowest hole); 0 keeps every loop.
   double persistence = 1.25;
   /// The hand to rank loops for (robots::hand_size()); 0 = none. See RankingOptions.
   double finger_thickness = 0.0;

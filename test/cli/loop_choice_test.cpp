@@ -120,12 +120,12 @@ TEST(LoopChoice, MorePointsNeverMeanMoreLoops) {
 
 TEST(LoopChoice, LoopsRobotRefusesAHoleNarrowerThanTheFingers) {
   TempDir dir;
-  // A ring whose hole (26 mm) admits the iCub's fingers (14 mm) but not the SDH's (29 mm).
+  // A ring whose hole (30 mm) admits the iCub's fingers (14 mm) but not the SDH's (29 mm + 5).
   Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();
   pose.translate(Eigen::Vector3d(0.55, 0, 0.2));
   pose.rotate(Eigen::AngleAxisd(M_PI / 2, Eigen::Vector3d::UnitY()));
   const std::string mesh = dir.file("ring.obj");
-  perception::write_obj(objects::torus_mesh(0.019, 0.006, pose), mesh);
+  perception::write_obj(objects::torus_mesh(0.021, 0.006, pose), mesh);
   const auto loops = [&](const std::string& robot) {
     const CliResult r = run_cli({"loops", mesh, "--robot", robot, "--json"});
     EXPECT_EQ(r.exit_code, 0) << r.err;
@@ -143,7 +143,8 @@ TEST(LoopChoice, LoopsRobotRefusesAHoleNarrowerThanTheFingers) {
   EXPECT_TRUE(refused);
   EXPECT_NEAR(sdh["hand"]["finger_thickness"].get<double>(), 0.029, 1e-6);
   bool icub_claspable = false;
-  for (const auto& l : loops("kr5_icub")["loops"]) icub_claspable |= l["claspable"].get<bool>();
+  const auto icub = loops("kr5_icub");
+  for (const auto& l : icub["loops"]) icub_claspable |= l["claspable"].get<bool>();
   EXPECT_TRUE(icub_claspable);
 }
 
