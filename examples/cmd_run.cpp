@@ -1,5 +1,5 @@
-// `claspplan run SCENARIO.yaml [--out DIR] [--seed N] [--time-limit S] [--controller-only]
-// [--json]`: the main job on a scenario file.
+// `claspplan run SCENARIO.yaml [--out DIR] [--seed N] [--time-limit S] [--max-cycles N]
+// [--controller-only] [--json]`: the main job on a scenario file.
 #include <cstdio>
 
 #include "examples/command.hpp"
@@ -13,6 +13,7 @@ struct RunCommandOptions {
   RunOptions run;
   std::uint64_t seed = 0;
   double time_limit = 0.0;
+  int max_cycles = 0;
   bool no_pictures = false;
   bool json = false;
 };
@@ -32,6 +33,10 @@ void add_run_command(CLI::App& app, Action& action) {
   cmd->add_option("--seed", o->seed, "random seed (overrides the scenario's)");
   cmd->add_option("--time-limit", o->time_limit, "planning wall-clock limit in seconds")
       ->check(CLI::PositiveNumber);
+  cmd->add_option("--max-cycles", o->max_cycles,
+                  "bound the search by TS-RRT cycles instead of time (reproducible on any "
+                  "machine; no time limit unless --time-limit is given too)")
+      ->check(CLI::Range(1, 10000000));
   cmd->add_flag("--controller-only", o->run.controller_only,
                 "no planning: iterate the clasp controller toward the nearest clasp target");
   cmd->add_flag("--no-pictures", o->no_pictures, "skip the PNG pictures");
@@ -39,6 +44,7 @@ void add_run_command(CLI::App& app, Action& action) {
   cmd->callback([o, cmd, &action] {
     if (cmd->count("--seed")) o->run.seed = o->seed;
     if (cmd->count("--time-limit")) o->run.time_limit = o->time_limit;
+    if (cmd->count("--max-cycles")) o->run.max_cycles = o->max_cycles;
     action = [o] {
       o->run.pictures = !o->no_pictures;
       o->run.quiet = o->json;

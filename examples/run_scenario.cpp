@@ -269,6 +269,10 @@ RunOutcome run_scenario(const Scenario& scenario, const RunOptions& options) {
     s.seed = *options.seed;
     s.perception.seed = s.planning.planner.seed = s.planning.secure.seed = *options.seed;
   }
+  if (options.max_cycles) {
+    s.planning.planner.max_cycles = *options.max_cycles;
+    s.planning.planner.time_limit = 0.0;
+  }
   if (options.time_limit) s.planning.planner.time_limit = *options.time_limit;
   const robots::RobotModel model = robots::load_robot(s.robot);
   const Eigen::VectorXd q_start = model.complete_q(s.start);

@@ -16,6 +16,9 @@ struct RunOptions {
   std::string out_dir = "claspplan-out";
   std::optional<std::uint64_t> seed;  ///< overrides the scenario's seed
   std::optional<double> time_limit;   ///< seconds, overrides the scenario's planner time limit
+  /// Bound the search by cycles instead (no time limit unless time_limit is given too): results
+  /// then do not depend on the machine's speed or load.
+  std::optional<int> max_cycles;
   bool controller_only = false;
   bool pictures = true;
   bool quiet = false;  ///< no progress lines on stderr
