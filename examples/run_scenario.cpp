@@ -61,6 +61,10 @@ const perception::Loop* choose_loop(const perception::ObjectModel& object,
 }
 
 std::string no_loop_reason(const perception::ObjectModel& object) {
+  if (object.loops.empty() && object.unstable_loops > 0)
+    return "no stable loop: all " + std::to_string(object.unstable_loops) +
+           " loops of K_d fill in by d' = " + std::to_string(object.persistence_d) +
+           " m (gaps or holes narrower than a finger's)";
   if (object.loops.empty()) return "the object has no loops (beta1 = 0)";
   std::string why = "no claspable loop: ";
   for (std::size_t i = 0; i < object.loops.size() && i < 3; ++i) {

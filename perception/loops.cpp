@@ -102,10 +102,11 @@ double exit_distance(const Eigen::AlignedBox3d& box, const Eigen::Vector3d& p,
 // The bar's cross-section at loop point p with tangent t: the cloud points in a slab across the
 // loop, grown from p over gaps shorter than `link`; its diameter. +inf when it reaches `cap` (a
 // wall or a body), or when the ring where closed fingers would lie around it (its radius plus
-// half a finger) meets material or space no camera saw (the bar may be deeper than it looked).
+// half a finger) meets material, space no camera saw (the bar may be deeper than it looked) or
+// the supporting surface.
 double bar_at(const PointIndex& index, const std::vector<DepthView>& views,
-              const Eigen::Vector3d& p, const Eigen::Vector3d& t, double link, double cap,
-              double finger) {
+              const std::optional<Eigen::Vector4d>& support, const Eigen::Vector3d& p,
+              const Eigen::Vector3d& t, double link, double cap, double finger) {
   constexpr double kInf = std::numeric_limits<double>::infinity();
   const PointCloud& cloud = index.points();
   std::vector<std::pair<unsigned, double>> near;
@@ -150,7 +151,9 @@ double bar_at(const PointIndex& index, const std::vector<DepthView>& views,
     const Eigen::Vector3d q = centre + ring * (std::cos(a) * u1 + std::sin(a) * u2);
     const bool material = index.count_within(q, 0.5 * finger, 1) > 0;
     const bool hidden = !views.empty() && seen_from(views, q, 0.005) == Seen::kBlocked;
-    doubtful += material || hidden;
+    const bool below = support && (support->head<3>().dot(q) + (*support)[3]) <
+                                      0.5 * finger * support->head<3>().norm();
+    doubtful += material || hidden || below;
   }
   return doubtful > 1 ? kInf : diameter;
 }
@@ -172,7 +175,7 @@ void measure_bar(Loop& loop, const PointIndex& index, const std::vector<DepthVie
   loop.bar_profile.clear();
   std::vector<double> measured;
   for (const auto& [p, t] : arc_samples(loop.points, kBarSamples)) {
-    const double b = bar_at(index, views, p, t, link, cap, finger);
+    const double b = bar_at(index, views, o.support_plane, p, t, link, cap, finger);
     loop.bar_profile.push_back(b);
     if (b > 0) measured.push_back(b);
   }

@@ -52,6 +52,7 @@ for s in "$@"; do
     fi
   done
   top=$(sort "$work/r" | uniq -c | sort -rn | head -1 | sed 's/^ *[0-9]* //')
-  printf '| %s | %d/%d | %s | %s | %s |\n' "$name" "$ok" "$n" "$(median <"$work/t" | xargs printf '%.2f' 2>/dev/null || echo -)" \
-    "$(median <"$work/c")" "${top:--}"
+  t=$(median <"$work/t")
+  [[ "$t" == "-" ]] || t=$(printf '%.2f' "$t")
+  printf '| %s | %d/%d | %s | %s | %s |\n' "$name" "$ok" "$n" "$t" "$(median <"$work/c")" "${top:--}"
 done
