@@ -364,12 +364,12 @@ Scenario load_scenario_text(const std::string& text, const std::string& path,
       ctl.integer("stall_steps", s.controller_run.stall_steps, 1, 1000000);
 
   const Reader pl = r.child("planner");
-  pl.only({"random_probability",   "pre_expansions", "max_cycles",       "time_limit",
-           "extend_steps",         "connect_steps",  "stall_steps",      "linking_scale",
-           "sample_min",           "sample_max",     "goal_linking",     "position_tolerance",
-           "collision_resolution", "prune_attempts", "closing_step",     "closing_clearance",
-           "verify_sequences",     "verify_motions", "verify_in_search", "backoff_steps",
-           "detour_steps"});
+  pl.only({"random_probability",   "pre_expansions",  "max_cycles",       "time_limit",
+           "extend_steps",         "connect_steps",   "stall_steps",      "linking_scale",
+           "sample_min",           "sample_max",      "goal_linking",     "position_tolerance",
+           "collision_resolution", "prune_attempts",  "closing_step",     "closing_clearance",
+           "verify_sequences",     "verify_motions",  "verify_in_search", "backoff_steps",
+           "detour_steps",         "closable_linking"});
   auto& o = s.planning;
   auto& tp = o.planner;
   tp.random_probability = pl.number("random_probability", tp.random_probability, 0.0, 1.0);
@@ -395,6 +395,7 @@ Scenario load_scenario_text(const std::string& text, const std::string& path,
   }
   tp.seed = s.seed;
   o.goal_linking = pl.number("goal_linking", o.goal_linking, 0.0, 1.0);
+  o.closable_linking = pl.number("closable_linking", o.closable_linking, 0.0, 1.0);
   o.position_tolerance = pl.number("position_tolerance", o.position_tolerance, 0.0, 10.0);
   o.collision_resolution = pl.number("collision_resolution", o.collision_resolution, 1e-4, 1.0);
   o.prune_attempts = pl.integer("prune_attempts", o.prune_attempts, 0, 1000000);
