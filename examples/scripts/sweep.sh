@@ -1,19 +1,23 @@
 #!/usr/bin/env bash
 # Runs scenarios over seeds and prints one table row per scenario: verified clasps, the median
-# planning time and cycles of the verified runs, and the most common reason of the others.
+# planning time and cycles of the verified runs, and the most common reason of the others (with
+# --controller-only: the controller reaching the goal, and the median steps).
 # The README's result tables come from this script.
 #
-#   examples/scripts/sweep.sh [--seeds "1 2 3 4"] [--bin build/claspplan] [--jobs 2] SCENARIO.yaml...
+#   examples/scripts/sweep.sh [--seeds "1 2 3 4"] [--bin build/claspplan] [--jobs 2]
+#                             [--controller-only] SCENARIO.yaml...
 set -euo pipefail
 seeds="1 2 3 4"
 bin="$(dirname "$0")/../../build/claspplan"
 jobs=2
+mode=""
 while [[ $# -gt 0 ]]; do
   case "$1" in
     --seeds) seeds="$2"; shift 2 ;;
     --bin) bin="$2"; shift 2 ;;
     --jobs) jobs="$2"; shift 2 ;;
-    -h|--help) sed -n '2,7p' "$0"; exit 0 ;;
+    --controller-only) mode="--controller-only"; shift ;;
+    -h|--help) sed -n '2,9p' "$0"; exit 0 ;;
     *) break ;;
   esac
 done
@@ -25,10 +29,11 @@ trap 'rm -rf "$work"' EXIT
 # One run: its --json summary line, saved per scenario and seed.
 run_one() {
   local scenario="$1" seed="$2" out="$3"
-  "$bin" run "$scenario" --seed "$seed" --no-pictures --json --out "$out.d" >"$out.json" 2>/dev/null || true
+  "$bin" run "$scenario" --seed "$seed" --no-pictures --json --out "$out.d" $mode >"$out.json" \
+    2>/dev/null || true
 }
 export -f run_one
-export bin
+export bin mode
 for s in "$@"; do
   for seed in $seeds; do
     printf '%s\t%s\t%s\n' "$s" "$seed" "$work/$(basename "$s" .yaml)_$seed"
@@ -38,15 +43,17 @@ done | xargs -P "$jobs" -L 1 bash -c 'run_one "$0" "$1" "$2"'
 field() { sed -n "s/^  \"$1\": \(.*\),\{0,1\}$/\1/p" "$2" | sed 's/,$//' | head -1; }
 median() { sort -g | awk '{a[NR]=$1} END {if (NR == 0) print "-"; else if (NR % 2) print a[(NR+1)/2]; else printf "%.3g\n", (a[NR/2]+a[NR/2+1])/2}'; }
 
-printf '| scenario | verified | median s | median cycles | other runs: main reason |\n|---|---|---|---|---|\n'
+if [[ -n "$mode" ]]; then ok_key=success; count_key=steps; else ok_key=verified; count_key=cycles; fi
+printf '| scenario | %s | median s | median %s | other runs: main reason |\n|---|---|---|---|---|\n' \
+  "$ok_key" "$count_key"
 for s in "$@"; do
   name=$(basename "$s" .yaml)
   n=0; ok=0; : >"$work/t"; : >"$work/c"; : >"$work/r"
   for seed in $seeds; do
     f="$work/${name}_$seed.json"
     n=$((n + 1))
-    if [[ "$(field verified "$f")" == "true" ]]; then
-      ok=$((ok + 1)); field seconds "$f" >>"$work/t"; field cycles "$f" >>"$work/c"
+    if [[ "$(field "$ok_key" "$f")" == "true" ]]; then
+      ok=$((ok + 1)); field seconds "$f" >>"$work/t"; field "$count_key" "$f" >>"$work/c"
     else
       reason=$(field reason "$f" | tr -d '"'); echo "${reason:-exit without a summary}" | cut -c1-90 >>"$work/r"
     fi
