@@ -84,11 +84,11 @@ void write_clasp_views(const SceneGeometry& scene, const Eigen::VectorXd& q,
 }
 
 void write_tree_picture(const SceneGeometry& scene, const Eigen::VectorXd& q_start,
-                        const tsrrt::PlanResult& plan, const std::vector<Eigen::VectorXd>& path,
-                        const std::string& file) {
+                        const tsrrt::ClaspStatistics& search,
+                        const std::vector<Eigen::VectorXd>& path, const std::string& file) {
   std::vector<Eigen::Vector3d> tree, solution, pruned;
-  for (const auto& x : plan.tree_points) tree.push_back(x.position);
-  for (int i : plan.solution_nodes) solution.push_back(plan.tree_points[i].position);
+  for (const auto& x : search.tree_points) tree.push_back(x.position);
+  for (int i : search.solution_nodes) solution.push_back(search.tree_points[i].position);
   for (const auto& q : path) pruned.push_back(hand_centre(scene.model, q));
   std::vector<Eigen::Vector3d> frame = tree;
   frame.insert(frame.end(), scene.loop.begin(), scene.loop.end());
@@ -97,7 +97,7 @@ void write_tree_picture(const SceneGeometry& scene, const Eigen::VectorXd& q_sta
   image.draw_points(tree, cv::Scalar(40, 40, 220), 3);
   image.draw_points(solution, cv::Scalar(220, 80, 30), 4);
   image.draw_polyline(pruned, false, cv::Scalar(40, 170, 40), 2, true);
-  image.draw_label("TS-RRT: " + std::to_string(plan.nodes) + " nodes (red), solution (blue), " +
+  image.draw_label("TS-RRT: " + std::to_string(search.nodes) + " nodes (red), solution (blue), " +
                    "pruned path (green)");
   image.save(file);
 }

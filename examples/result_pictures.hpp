@@ -11,7 +11,7 @@
 #include "examples/scenario.hpp"
 #include "examples/scene_render.hpp"
 #include "robots/robot_model.hpp"
-#include "tsrrt/planner.hpp"
+#include "tsrrt/clasp_setup.hpp"
 
 namespace claspplan::cli {
 
@@ -32,11 +32,11 @@ void draw_scene(SceneImage& image, const SceneGeometry& scene, const Eigen::Vect
 void write_clasp_views(const SceneGeometry& scene, const Eigen::VectorXd& q,
                        const std::string& dir);
 
-/// The tree's grasp-centre points (red), the solution's nodes (blue) and the pruned path's hand
-/// centres (green), over the start pose.
+/// The search tree's grasp-centre points (red), the solution's nodes (blue) and the pruned path's
+/// hand centres (green), over the start pose.
 void write_tree_picture(const SceneGeometry& scene, const Eigen::VectorXd& q_start,
-                        const tsrrt::PlanResult& plan, const std::vector<Eigen::VectorXd>& path,
-                        const std::string& file);
+                        const tsrrt::ClaspStatistics& search,
+                        const std::vector<Eigen::VectorXd>& path, const std::string& file);
 
 /// Four panels: the path at 20, 40, 60 and 80% of its joint-space length.
 void write_path_poses(const SceneGeometry& scene, const std::vector<Eigen::VectorXd>& path,

@@ -4,24 +4,18 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
-#include <limits>
+#include <memory>
+#include <utility>
 
 #include "examples/command.hpp"
 #include "examples/result_pictures.hpp"
-#include "perception/depth_surface.hpp"
-#include "robots/collision_world.hpp"
-#include "robots/hand_size.hpp"
-#include "servo/controller_run.hpp"
-#include "tsrrt/clasp_planning.hpp"
+#include "tsrrt/clasp_setup.hpp"
 
 namespace claspplan::cli {
 namespace {
 
 using Clock = std::chrono::steady_clock;
 using nlohmann::json;
-
-// The loop's material in the collision model (m): see tsrrt::loop_tube().
-constexpr double kLoopTubeRadius = 0.003;
 
 double since(Clock::time_point t) {
   return std::chrono::duration<double>(Clock::now() - t).count();
@@ -45,75 +39,6 @@ void write_json(const std::string& path, const json& j) {
   if (!out) throw std::runtime_error("cannot write " + path);
 }
 
-// The claspable loop to clasp: the one nearest the scenario's hint, else the best ranked.
-const perception::Loop* choose_loop(const perception::ObjectModel& object,
-                                    const std::optional<Eigen::Vector3d>& hint) {
-  const perception::Loop* chosen = nullptr;
-  double best = std::numeric_limits<double>::infinity();
-  for (const auto& loop : object.loops) {
-    if (!loop.claspable) continue;
-    if (!hint) return &loop;  // ranked best first
-    for (const auto& p : loop.points) {
-      if ((p - *hint).norm() < best) best = (p - *hint).norm(), chosen = &loop;
-    }
-  }
-  return chosen;
-}
-
-std::string no_loop_reason(const perception::ObjectModel& object) {
-  if (object.loops.empty() && object.unstable_loops > 0)
-    return "no stable loop: all " + std::to_string(object.unstable_loops) +
-           " loops of K_d fill in by d' = " + std::to_string(object.persistence_d) +
-           " m (gaps or holes narrower than a finger's)";
-  if (object.loops.empty()) return "the object has no loops (beta1 = 0)";
-  std::string why = "no claspable loop: ";
-  for (std::size_t i = 0; i < object.loops.size() && i < 3; ++i) {
-    why += (i ? "; " : "") + object.loops[i].reason;
-  }
-  return why;
-}
-
-// The planner's default sample box: object and hand start, with 0.3 m of room around them, so
-// that the tree can find its way around obstacles next to the object.
-void fit_sample_box(tsrrt::PlannerParameters& p, const perception::ObjectModel& object,
-                    const Eigen::Vector3d& hand_start) {
-  Eigen::AlignedBox3d box = perception::bounds(object.cloud);
-  box.extend(hand_start);
-  p.sample_min = box.min() - Eigen::Vector3d::Constant(0.3);
-  p.sample_max = box.max() + Eigen::Vector3d::Constant(0.3);
-}
-
-// The object's collision model everywhere (planning, closing, verification): the surface the
-// depth cameras saw (K_d is for topology: its long triangles web across holes), else K_d's
-// triangles for clouds and whole-surface samples; and a thin tube along the clasped loop, so the
-// loop itself is always material.
-RenderMesh collision_mesh(const perception::ObjectModel& object, const perception::Loop& loop,
-                          const perception::PerceptionOptions& options,
-                          const std::string& scenario_path) {
-  RenderMesh mesh;
-  if (!object.views.empty()) {
-    perception::DepthSurfaceOptions so;
-    so.workspace = options.workspace;
-    so.support_plane = object.support_plane;
-    const perception::TriangleMesh seen = perception::depth_surface_mesh(object.views, so);
-    mesh.vertices = seen.vertices;
-    for (const auto& t : seen.triangles) mesh.triangles.emplace_back(t[0], t[1], t[2]);
-  } else {
-    mesh.vertices = object.complex.points;
-    for (int i = 0; i < static_cast<int>(object.complex.triangles.size()); ++i) {
-      const auto v = object.complex.triangle_vertices(i);
-      mesh.triangles.emplace_back(v[0], v[1], v[2]);
-    }
-  }
-  if (mesh.triangles.empty()) {
-    throw std::invalid_argument(scenario_path +
-                                ": the object has no surface to collide with (no depth surface "
-                                "and no K_d triangles: raise perception.d or the point count)");
-  }
-  tsrrt::loop_tube(loop.points, kLoopTubeRadius, mesh.vertices, mesh.triangles);
-  return mesh;
-}
-
 json scene_json(const SceneGeometry& scene) {
   json boxes = json::array();
   for (const auto& b : scene.boxes) {
@@ -130,159 +55,94 @@ json scene_json(const SceneGeometry& scene) {
       {"object_mesh", {{"vertices", to_json(scene.object.vertices)}, {"triangles", triangles}}}};
 }
 
-// What the controller-only or the planned phase produced.
-struct Motion {
-  std::vector<Eigen::VectorXd> path;  // start to final pose; empty when none was found
-  bool success = false;
-  json summary;  // the command's --json object so far
-};
-
-Motion run_controller_only(const Scenario& s, servo::ClaspController& controller,
-                           robots::CollisionWorld& world, const Eigen::VectorXd& q_start,
-                           double goal_linking, json& result, json& timing) {
-  const auto t = Clock::now();
-  servo::ControllerRunOptions ro = s.controller_run;
-  ro.goal_linking = goal_linking;
-  const servo::ControllerRun run = servo::run_controller(controller, world, q_start, ro);
-  timing["controller"] = since(t);
-  const int steps = static_cast<int>(run.waypoints.size()) - 1;
-  result["steps"] = steps;
-  result["collided"] = run.collided;
-  result["target"] = run.target;
-  result["linking_history"] = run.linking_history;
-  return {run.waypoints,
-          run.success,
-          {{"success", run.success},
-           {"reason", run.reason},
-           {"steps", steps},
-           {"collided", run.collided},
-           {"seconds", timing["controller"]}}};
+json outcomes_json(const tsrrt::ConnectOutcomes& o) {
+  return {{"attempts", o.attempts},
+          {"accepted", o.accepted},
+          {"rejected", o.rejected},
+          {"contact_object", o.contact_object},
+          {"contact_environment", o.contact_environment},
+          {"self_collision", o.self_collision},
+          {"joint_limits", o.joint_limits},
+          {"stall", o.stall},
+          {"step_cap", o.step_cap},
+          {"time_limit", o.time_limit},
+          {"detours", o.detours},
+          {"extend_collisions", o.extend_collisions}};
 }
 
-// TS-RRT with every goal node closed and verified at once (paper Sec. IV-D, V-A); with
-// verify_in_search an insecure clasp is rejected and the search goes on.
-Motion plan_clasp(Scenario& s, const SceneGeometry& scene, servo::ClaspController& controller,
-                  robots::CollisionWorld& world, const Eigen::VectorXd& q_start,
-                  double goal_linking, const perception::ObjectModel& object,
-                  const RunOptions& options, const std::function<void(const std::string&)>& say,
-                  json& result, json& timing) {
-  const robots::RobotModel& model = scene.model;
-  tsrrt::PlannerParameters pp = s.planning.planner;
-  if (!s.planning.sample_box_given) {
-    fit_sample_box(pp, object, controller.project(q_start).position);
-  }
-  if (pp.time_limit > 0.0) {
-    s.planning.secure.deadline = Clock::now() + std::chrono::duration_cast<Clock::duration>(
-                                                    std::chrono::duration<double>(pp.time_limit));
-  }
-  Eigen::VectorXd q_closed;
-  tsrrt::SecureClaspReport check;
-  int candidates = 0, screened = 0;
-  double closing_seconds = 0.0, verification_seconds = 0.0;
-  const auto close_and_verify = [&](const Eigen::VectorXd& q_goal) {
-    ++candidates;
-    auto t = Clock::now();
-    q_closed = tsrrt::close_fingers(model, world, q_goal, s.planning.closing);
-    closing_seconds += since(t);
-    // A closable pose whose closed hand stays below the goal is no clasp: refused at once.
-    const double closed_linking = controller.project(q_closed).linking;
-    if (closed_linking < goal_linking && s.planning.verify_in_search) {
-      ++screened;
-      say("  clasp candidate " + std::to_string(candidates) + ": the closed hand reaches virtual " +
-          "linking " + std::to_string(closed_linking) + " only; refused");
-      return false;
-    }
-    say("  clasp candidate " + std::to_string(candidates) + ": fingers closed; verifying (" +
-        std::to_string(s.planning.secure.sequences) + " x " +
-        std::to_string(s.planning.secure.motions) + " random motions of the object) ...");
-    t = Clock::now();
-    // Screening first: the first motions of the first sequences, as the full check runs them
-    // (same seeds), so an escape there is an escape of the full check: the verdict is the same,
-    // found sooner.
-    tsrrt::SecureClaspOptions screen = s.planning.secure;
-    screen.sequences = std::min(screen.sequences, 2);
-    screen.motions = std::min(screen.motions, 100);
-    check = tsrrt::check_secure_clasp(model, scene.object.vertices, scene.object.triangles,
-                                      q_closed, scene.loop, screen);
-    const bool screened_out = !check.secure;
-    if (!screened_out) {
-      check = tsrrt::check_secure_clasp(model, scene.object.vertices, scene.object.triangles,
-                                        q_closed, scene.loop, s.planning.secure);
-    }
-    verification_seconds += since(t);
-    if (!check.secure) {
-      say("  rejected: the object got free in " + std::to_string(check.escaped_sequences) + " of " +
-          std::to_string(check.sequences) + " sequences" +
-          (screened_out ? " of the screening (the first motions of the full check)" : ""));
-    }
-    return check.secure || !s.planning.verify_in_search;
-  };
-  const double tolerance = s.planning.closable_linking > 0
-                               ? std::min(s.planning.closable_linking, goal_linking)
-                               : goal_linking;
-  tsrrt::ClaspProblem problem(controller, world, tolerance, s.planning.position_tolerance,
-                              s.planning.collision_resolution, close_and_verify);
-  std::vector<tsrrt::TaskPoint> goals;
-  for (const auto& g : controller.targets()) goals.push_back({g.point, 1.0});  // Alg. 1, line 9
-  say("planning (TS-RRT, " + std::to_string(goals.size()) + " clasp goals) ...");
-  auto t = Clock::now();
-  const tsrrt::PlanResult plan = tsrrt::build_ts_rrt(problem, q_start, goals, pp);
-  const double seconds = since(t);
-  timing["planning"] = seconds - closing_seconds - verification_seconds;
-  timing["closing"] = closing_seconds;
-  timing["verification"] = verification_seconds;
-  result["cycles"] = plan.cycles;
-  result["nodes"] = plan.nodes;
-  result["control_steps"] = plan.control_steps;
-  result["clasp_candidates"] = candidates;
-  result["clasp_candidates_screened"] = screened;
-  const tsrrt::ConnectOutcomes& o = plan.outcomes;
-  const json outcomes = {{"attempts", o.attempts},
-                         {"accepted", o.accepted},
-                         {"rejected", o.rejected},
-                         {"contact_object", o.contact_object},
-                         {"contact_environment", o.contact_environment},
-                         {"self_collision", o.self_collision},
-                         {"joint_limits", o.joint_limits},
-                         {"stall", o.stall},
-                         {"step_cap", o.step_cap},
-                         {"time_limit", o.time_limit},
-                         {"detours", o.detours},
-                         {"extend_collisions", o.extend_collisions}};
-  result["connect_outcomes"] = outcomes;
-  if (candidates > screened) result["verification"] = verification_json(check);
+// The request for the scenario: the run options replace its seed and search bound.
+tsrrt::ClaspRequest clasp_request(const Scenario& s, const RunOptions& options,
+                                  std::shared_ptr<const robots::RobotModel> robot,
+                                  perception::PerceptionInputs inputs) {
+  tsrrt::ClaspRequest request;
+  request.robot = std::move(robot);
+  request.start =
+      Eigen::Map<const Eigen::VectorXd>(s.start.data(), static_cast<Eigen::Index>(s.start.size()));
+  request.object = std::move(inputs);
+  request.environment = s.boxes;
+  request.loop_hint = s.loop_hint;
+  request.targets = s.targets;
+  request.perception = s.perception;
+  request.controller = s.controller;
+  request.controller_run = s.controller_run;
+  request.planning = s.planning;
+  request.mode =
+      options.controller_only ? tsrrt::ClaspMode::kControllerOnly : tsrrt::ClaspMode::kPlan;
+  request.seed = options.seed;
+  request.max_cycles = options.max_cycles;
+  request.time_limit = options.time_limit;
+  request.name = s.path;
+  return request;
+}
 
-  Motion m;
-  m.summary = {{"cycles", plan.cycles},
-               {"nodes", plan.nodes},
-               {"seconds", seconds},
-               {"clasp_candidates", candidates},
-               {"success", plan.success}};
-  m.summary["connect_outcomes"] = outcomes;
-  if (!plan.success) {
-    m.summary["verified"] = false;
-    m.summary["reason"] = plan.reason;
-    if (options.pictures)
-      write_tree_picture(scene, q_start, plan, {}, options.out_dir + "/tree.png");
-    return m;
+// The controller-only phase's part of result.json, timing.json and the summary.
+json controller_json(const tsrrt::ClaspResult& r, json& result, json& timing) {
+  timing["controller"] = r.timings.controller;
+  const tsrrt::ClaspStatistics& st = r.statistics;
+  result["steps"] = st.control_steps;
+  result["collided"] = st.collided;
+  result["target"] = r.motion.target;
+  result["linking_history"] = st.linking_history;
+  return {{"success", r.success},
+          {"reason", r.reason},
+          {"steps", st.control_steps},
+          {"collided", st.collided},
+          {"seconds", timing["controller"]}};
+}
+
+// The planned phase's part (TS-RRT, closing, verification, pruning), with the tree picture.
+json planner_json(const tsrrt::ClaspResult& r, const SceneGeometry& scene,
+                  const RunOptions& options, json& result, json& timing) {
+  const tsrrt::ClaspStatistics& st = r.statistics;
+  timing["planning"] = r.timings.planning;
+  timing["closing"] = r.timings.closing;
+  timing["verification"] = r.timings.verification;
+  result["cycles"] = st.cycles;
+  result["nodes"] = st.nodes;
+  result["control_steps"] = st.control_steps;
+  result["clasp_candidates"] = st.clasp_candidates;
+  result["clasp_candidates_screened"] = st.clasp_candidates_screened;
+  const json outcomes = outcomes_json(st.connect_outcomes);
+  result["connect_outcomes"] = outcomes;
+  if (st.clasp_candidates > st.clasp_candidates_screened)
+    result["verification"] = verification_json(r.verification);
+  const bool found = !r.motion.waypoints.empty();
+  json summary = {{"cycles", st.cycles},
+                  {"nodes", st.nodes},
+                  {"seconds", r.timings.search},
+                  {"clasp_candidates", st.clasp_candidates},
+                  {"success", found}};
+  summary["connect_outcomes"] = outcomes;
+  summary["verified"] = r.verified;
+  summary["reason"] = r.reason;
+  if (found) {
+    result["target"] = r.motion.target;
+    result["unpruned_waypoints"] = st.unpruned_waypoints;
+    timing["pruning"] = r.timings.pruning;
   }
-  say("  clasp found after " + std::to_string(plan.cycles) + " cycles, " +
-      std::to_string(plan.nodes) + " nodes; pruning the path ...");
-  result["target"] = plan.goal_index;
-  result["unpruned_waypoints"] = static_cast<int>(plan.path.size());
-  t = Clock::now();
-  m.path = tsrrt::prune_path(problem, plan.path, s.planning.prune_attempts, s.seed);
-  timing["pruning"] = since(t);
-  if (q_closed != m.path.back()) m.path.push_back(q_closed);
-  m.success = check.secure;
-  m.summary["verified"] = check.secure;
-  m.summary["reason"] = check.secure ? "verified clasp"
-                                     : "the clasp failed verification: the object got free in " +
-                                           std::to_string(check.escaped_sequences) + " of " +
-                                           std::to_string(check.sequences) + " sequences";
   if (options.pictures)
-    write_tree_picture(scene, q_start, plan, m.path, options.out_dir + "/tree.png");
-  return m;
+    write_tree_picture(scene, r.start, st, r.motion.waypoints, options.out_dir + "/tree.png");
+  return summary;
 }
 
 }  // namespace
@@ -293,21 +153,10 @@ RunOutcome run_scenario(const Scenario& scenario, const RunOptions& options) {
     if (!options.quiet) progress(m);
   };
   Scenario s = scenario;
-  if (options.seed) {
-    s.seed = *options.seed;
-    s.perception.seed = s.planning.planner.seed = s.planning.secure.seed = *options.seed;
-  }
-  if (options.max_cycles) {
-    s.planning.planner.max_cycles = *options.max_cycles;
-    s.planning.planner.time_limit = 0.0;
-  }
-  if (options.time_limit) s.planning.planner.time_limit = *options.time_limit;
-  const robots::RobotModel model = robots::load_robot(s.robot);
-  const Eigen::VectorXd q_start = model.complete_q(s.start);
-  // Loops are chosen for this hand: holes its fingers pass, bars its closed hand encloses.
-  const robots::HandSize hand = robots::hand_size(model);
-  s.perception.finger_thickness = hand.finger_thickness;
-  s.perception.closed_aperture = hand.closed_aperture;
+  if (options.seed) s.seed = *options.seed;  // the depth noise's (the stages': the request's)
+  const auto robot = std::make_shared<const robots::RobotModel>(robots::load_robot(s.robot));
+  const robots::RobotModel& model = *robot;
+  model.complete_q(s.start);  // a bad start is reported before any file is read
   json timing;
   json result = {{"scenario", s.path},
                  {"robot", s.robot},
@@ -324,10 +173,10 @@ RunOutcome run_scenario(const Scenario& scenario, const RunOptions& options) {
     return RunOutcome{exit_code, summary};
   };
 
-  // Perception. The inputs are read (and validated) before any progress line, so that a bad file
-  // gives a single error line; synthetic depth images are kept as depth files.
-  auto t = Clock::now();
-  const perception::PerceptionInputs inputs = scenario_inputs(s);
+  // The inputs are read (and validated) before any progress line, so that a bad file gives a
+  // single error line; synthetic depth images are kept as depth files.
+  const auto t = Clock::now();
+  perception::PerceptionInputs inputs = scenario_inputs(s);
   std::filesystem::create_directories(options.out_dir);
   for (std::size_t i = 0; i < s.object.cameras.size(); ++i) {
     const std::string stem = options.out_dir + "/depth_" + std::to_string(i);
@@ -335,27 +184,25 @@ RunOutcome run_scenario(const Scenario& scenario, const RunOptions& options) {
                                 stem + ".png");
     perception::write_camera_yaml(inputs.depth_views[i].camera, stem + ".yaml");
   }
-  say("perceiving the object ...");
-  s.perception.progress = options.quiet ? nullptr : say;
-  const perception::ObjectModel object = perception::build_object_model(inputs, s.perception);
-  timing["perception"] = since(t);
-  result["hand"] = {{"finger_thickness", hand.finger_thickness},
-                    {"closed_aperture", hand.closed_aperture}};
+  const double input_seconds = since(t);
+  tsrrt::ClaspRequest request = clasp_request(s, options, robot, std::move(inputs));
+  if (!options.quiet) request.progress = say;
+  const tsrrt::ClaspResult r = tsrrt::plan_clasp(request);
+
+  timing["perception"] = input_seconds + r.timings.perception;
+  result["hand"] = {{"finger_thickness", r.hand.finger_thickness},
+                    {"closed_aperture", r.hand.closed_aperture}};
   json& loops_json = result["loops"] = json::array();
-  for (const auto& l : object.loops)
+  for (const auto& l : r.object.loops)
     loops_json.push_back({{"rank", l.rank}, {"verdict", l.verdict}, {"reason", l.reason}});
-  const perception::Loop* loop = choose_loop(object, s.loop_hint);
+  const perception::Loop* loop = r.chosen_loop();
   if (!loop) {
     result["success"] = false;
-    return finish(kNoAnswer,
-                  {{"success", false}, {"verified", false}, {"reason", no_loop_reason(object)}});
+    return finish(kNoAnswer, {{"success", false}, {"verified", false}, {"reason", r.reason}});
   }
-  std::vector<servo::ClaspTarget> targets;
   json& targets_json = result["targets"] = json::array();
-  for (const auto& g : perception::clasp_targets(*loop, s.targets, hand.closed_aperture)) {
-    targets.push_back({g.p, g.tangent});
-    targets_json.push_back({{"p", to_json(g.p)}, {"tangent", to_json(g.tangent)}});
-  }
+  for (const auto& g : r.targets)
+    targets_json.push_back({{"p", to_json(g.point)}, {"tangent", to_json(g.tangent)}});
   result["loop"] = to_json(loop->points);
   result["loop_choice"] = {{"rank", loop->rank},
                            {"reason", loop->reason},
@@ -364,53 +211,37 @@ RunOutcome run_scenario(const Scenario& scenario, const RunOptions& options) {
                            {"fit", loop->fit}};
 
   // The scene: the robot, the object's collision mesh and the static environment.
-  const SceneGeometry scene{model, collision_mesh(object, *loop, s.perception, s.path), s.boxes,
-                            loop->points};
+  const SceneGeometry scene{
+      model, {r.collision_mesh.vertices, r.collision_mesh.triangles}, r.environment, loop->points};
   result.update(scene_json(scene));
-  robots::CollisionWorld world(model);
-  world.set_object(scene.object.vertices, scene.object.triangles);
-  for (const auto& b : s.boxes) world.add_box(b.pose, b.size);
-  robots::CollisionReport contact;
-  if (world.in_collision(q_start, &contact)) {
-    throw std::invalid_argument(s.path + ": the start configuration is in collision (" +
-                                contact.first + " with " + contact.second + ")");
-  }
-
-  servo::ClaspController controller(model, loop->points, targets, s.controller);
-  const double goal_linking =
-      s.planning.goal_linking > 0.0 ? s.planning.goal_linking : model.vlink_goal;
-  if (options.controller_only)
-    say("running the controller alone toward the nearest clasp target ...");
-  Motion m = options.controller_only
-                 ? run_controller_only(s, controller, world, q_start, goal_linking, result, timing)
-                 : plan_clasp(s, scene, controller, world, q_start, goal_linking, object, options,
-                              say, result, timing);
-  if (m.path.empty()) {
+  json summary = options.controller_only ? controller_json(r, result, timing)
+                                         : planner_json(r, scene, options, result, timing);
+  const std::vector<Eigen::VectorXd>& path = r.motion.waypoints;
+  if (path.empty()) {
     result["success"] = false;
     result["verified"] = false;
-    return finish(kNoAnswer, m.summary);
+    return finish(kNoAnswer, summary);
   }
 
   // The final pose: virtual linking (eq. 4) and the open curves' Gauss integrals (Fig. 6).
-  const servo::TaskState final_state = controller.project(m.path.back());
   json& waypoints = result["waypoints"] = json::array();
-  for (const auto& q : m.path) waypoints.push_back(to_json(q));
-  result["final_q"] = to_json(m.path.back());
-  result["success"] = m.success;
-  if (!options.controller_only) result["verified"] = m.success;
-  result["virtual_linking"] = final_state.linking;
-  result["finger_virtual_linking"] = final_state.finger_linking;
-  result["finger_open_linking"] = tsrrt::open_finger_linking(model, m.path.back(), loop->points);
-  m.summary["virtual_linking"] = final_state.linking;
-  m.summary["finger_virtual_linking"] = final_state.finger_linking;
+  for (const auto& q : path) waypoints.push_back(to_json(q));
+  result["final_q"] = to_json(r.motion.final_q);
+  result["success"] = r.success;
+  if (!options.controller_only) result["verified"] = r.verified;
+  result["virtual_linking"] = r.final_state.virtual_linking;
+  result["finger_virtual_linking"] = r.final_state.finger_virtual_linking;
+  result["finger_open_linking"] = r.final_state.finger_open_linking;
+  summary["virtual_linking"] = r.final_state.virtual_linking;
+  summary["finger_virtual_linking"] = r.final_state.finger_virtual_linking;
 
   if (options.pictures) {
-    t = Clock::now();
-    write_clasp_views(scene, m.path.back(), options.out_dir);
-    write_path_poses(scene, m.path, options.out_dir + "/poses.png");
-    timing["pictures"] = since(t);
+    const auto tp = Clock::now();
+    write_clasp_views(scene, r.motion.final_q, options.out_dir);
+    write_path_poses(scene, path, options.out_dir + "/poses.png");
+    timing["pictures"] = since(tp);
   }
-  return finish(m.success ? kOk : kNoAnswer, m.summary);
+  return finish(r.success ? kOk : kNoAnswer, summary);
 }
 
 json verification_json(const tsrrt::SecureClaspReport& v) {

@@ -1,5 +1,6 @@
-// The main job, shared by `claspplan run` and `claspplan demo`: depth → loops → plan (or the
-// controller alone) → close the fingers → prune → verify, with the result files and pictures.
+// The main job, shared by `claspplan run` and `claspplan demo`: a scenario becomes a
+// tsrrt::ClaspRequest (depth → loops → plan, or the controller alone → close the fingers → prune
+// → verify: tsrrt/clasp_setup.hpp), and its ClaspResult becomes the result files and pictures.
 #pragma once
 
 #include <cstdint>

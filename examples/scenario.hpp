@@ -17,6 +17,7 @@
 #include "servo/clasp_controller.hpp"
 #include "servo/controller_run.hpp"
 #include "tsrrt/clasp_planning.hpp"
+#include "tsrrt/clasp_setup.hpp"
 
 namespace claspplan::cli {
 
@@ -44,10 +45,7 @@ struct ObjectSpec {
   perception::DepthNoise noise;
 };
 
-struct EnvironmentBox {
-  Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();
-  Eigen::Vector3d size = Eigen::Vector3d::Zero();
-};
+using EnvironmentBox = tsrrt::EnvironmentBox;  ///< pose (centre) and size
 
 struct Scenario {
   std::string path;  ///< the file, as given

@@ -335,4 +335,19 @@ SecureClaspReport check_secure_clasp(const robots::RobotModel& model,
   return report;
 }
 
+SecureClaspReport screened_secure_clasp(const robots::RobotModel& model,
+                                        const std::vector<Eigen::Vector3d>& object_vertices,
+                                        const std::vector<Eigen::Vector3i>& object_triangles,
+                                        const Eigen::VectorXd& q, const servo::Points& loop,
+                                        const SecureClaspOptions& options, bool* screened_out) {
+  SecureClaspOptions screen = options;
+  screen.sequences = std::min(screen.sequences, 2);
+  screen.motions = std::min(screen.motions, 100);
+  SecureClaspReport report =
+      check_secure_clasp(model, object_vertices, object_triangles, q, loop, screen);
+  if (screened_out) *screened_out = !report.secure;
+  if (!report.secure) return report;
+  return check_secure_clasp(model, object_vertices, object_triangles, q, loop, options);
+}
+
 }  // namespace claspplan::tsrrt

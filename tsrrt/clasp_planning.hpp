@@ -132,6 +132,17 @@ SecureClaspReport check_secure_clasp(const robots::RobotModel& model,
                                      const Eigen::VectorXd& q, const servo::Points& loop,
                                      const SecureClaspOptions& options);
 
+/// check_secure_clasp() after a screening pass: the first 100 motions of the first 2 sequences,
+/// with the full check's seeds, so that an escape there is an escape of the full check too. The
+/// verdict is the full check's; insecure clasps are found sooner. `screened_out` (optional) tells
+/// whether the screening decided (the report then counts the screening's sequences).
+SecureClaspReport screened_secure_clasp(const robots::RobotModel& model,
+                                        const std::vector<Eigen::Vector3d>& object_vertices,
+                                        const std::vector<Eigen::Vector3i>& object_triangles,
+                                        const Eigen::VectorXd& q, const servo::Points& loop,
+                                        const SecureClaspOptions& options,
+                                        bool* screened_out = nullptr);
+
 /// Everything a planned clasp needs beyond the scene.
 struct ClaspPlanningOptions {
   PlannerParameters planner;

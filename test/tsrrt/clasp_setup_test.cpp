@@ -1,0 +1,188 @@
+// The pipeline as an API (tsrrt::plan_clasp): a request built in memory, from depth views of
+// procedural objects, gives a verified clasp with all result fields; a cup without a handle is a
+// valid problem without an answer; malformed requests throw.
+#include "tsrrt/clasp_setup.hpp"
+
+#include <gtest/gtest.h>
+
+#include "examples/objects.hpp"
+#include "perception/depth_render.hpp"
+
+namespace claspplan::test {
+namespace {
+
+// The object on the floor at x = 0.55, seen by two depth cameras above the robot's shoulders
+// (1 mm noise, the floor in the images), like the purse_1 scenarios.
+perception::PerceptionInputs seen_on_floor(const perception::TriangleMesh& object) {
+  Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();
+  pose.translate(Eigen::Vector3d(0.55, 0, 0));
+  perception::TriangleMesh scene = perception::transformed(object, pose);
+  perception::append_mesh(scene, objects::ground_plane(2.0, 0.0, {0.5, 0.0}));
+  perception::PerceptionInputs in;
+  perception::DepthNoise noise;
+  noise.sigma = 0.001;
+  for (const Eigen::Vector3d& position :
+       {Eigen::Vector3d(0.2, -0.6, 0.85), Eigen::Vector3d(0.2, 0.6, 0.85)}) {
+    perception::DepthView v;
+    v.camera = objects::kinect_camera(position, {0.55, 0, 0.15});
+    v.image = perception::render_depth(scene, v.camera, noise);
+    in.depth_views.push_back(v);
+    ++noise.seed;
+  }
+  return in;
+}
+
+const std::shared_ptr<const robots::RobotModel>& sdh() {
+  static const auto robot =
+      std::make_shared<const robots::RobotModel>(robots::load_robot("kr5_sdh"));
+  return robot;
+}
+
+tsrrt::ClaspRequest request_for(const perception::TriangleMesh& object) {
+  tsrrt::ClaspRequest r;
+  r.robot = sdh();
+  r.start = (Eigen::VectorXd(6) << 0, -1.5707963, 1.5707963, 0, 1.5707963, 0).finished();
+  r.object = seen_on_floor(object);
+  tsrrt::EnvironmentBox floor;
+  floor.pose.translation() = Eigen::Vector3d(0.5, 0, -0.025);
+  floor.size = Eigen::Vector3d(2.0, 2.0, 0.05);
+  r.environment = {floor};
+  r.targets = 9;
+  r.perception.workspace =
+      Eigen::AlignedBox3d(Eigen::Vector3d(0.2, -0.4, 0.01), Eigen::Vector3d(0.95, 0.4, 0.7));
+  r.planning.planner.pre_expansions = 200;
+  r.seed = 1;
+  r.max_cycles = 300;  // bounded by cycles: the same result on any machine
+  return r;
+}
+
+perception::TriangleMesh purse() {
+  objects::Purse p;
+  p.body = Eigen::Vector3d(0.30, 0.14, 0.18);
+  p.handle_radius = 0.12;
+  p.handle_tube = 0.012;
+  return objects::purse(p);
+}
+
+class PurseFromDepth : public ::testing::Test {
+ protected:
+  static void SetUpTestSuite() {
+    result_ = new tsrrt::ClaspResult(plan_clasp(request_for(purse())));
+  }
+  static void TearDownTestSuite() { delete result_; }
+  static inline tsrrt::ClaspResult* result_ = nullptr;
+};
+
+TEST_F(PurseFromDepth, IsAVerifiedClaspFromTheStart) {
+  const tsrrt::ClaspResult& r = *result_;
+  ASSERT_EQ(r.status, tsrrt::ClaspStatus::kSuccess) << r.reason;
+  EXPECT_TRUE(r.success);
+  EXPECT_TRUE(r.verified);
+  EXPECT_TRUE(r.verification.secure);
+  EXPECT_EQ(r.reason, "verified clasp");
+  ASSERT_GE(r.motion.waypoints.size(), 2u);
+  EXPECT_EQ(r.start.size(), sdh()->dof());
+  EXPECT_EQ(r.motion.waypoints.front(), r.start);
+  EXPECT_EQ(r.motion.final_q, r.motion.waypoints.back());
+  EXPECT_EQ(r.start.head(6), request_for(purse()).start);
+  // Every waypoint is free in the world the plan was checked in.
+  robots::CollisionWorld world = tsrrt::make_collision_world(*sdh(), r);
+  for (const auto& q : r.motion.waypoints) EXPECT_FALSE(world.in_collision(q));
+}
+
+TEST_F(PurseFromDepth, TargetsLieOnTheChosenLoop) {
+  const tsrrt::ClaspResult& r = *result_;
+  const perception::Loop* loop = r.chosen_loop();
+  ASSERT_NE(loop, nullptr);
+  EXPECT_TRUE(loop->claspable);
+  EXPECT_EQ(r.targets.size(), 9u);
+  ASSERT_GE(r.motion.target, 0);
+  EXPECT_LT(r.motion.target, static_cast<int>(r.targets.size()));
+  double longest = 0.0;
+  for (std::size_t i = 0; i < loop->points.size(); ++i)
+    longest =
+        std::max(longest, (loop->points[(i + 1) % loop->points.size()] - loop->points[i]).norm());
+  for (const auto& g : r.targets) {
+    double nearest = 1e9;
+    for (const auto& p : loop->points) nearest = std::min(nearest, (p - g.point).norm());
+    EXPECT_LE(nearest, longest);
+    EXPECT_NEAR(g.tangent.norm(), 1.0, 1e-9);
+  }
+  EXPECT_GT(r.hand.finger_thickness, 0.0);
+  EXPECT_GT(r.hand.closed_aperture, 0.0);
+  EXPECT_FALSE(r.collision_mesh.triangles.empty());
+  EXPECT_EQ(r.environment.size(), 1u);
+}
+
+TEST_F(PurseFromDepth, StatisticsTimingsAndFinalState) {
+  const tsrrt::ClaspResult& r = *result_;
+  const tsrrt::ClaspStatistics& s = r.statistics;
+  EXPECT_GE(s.cycles, 0);
+  EXPECT_LE(s.cycles, 300);
+  EXPECT_GT(s.nodes, 0);
+  EXPECT_GT(s.control_steps, 0);
+  EXPECT_GE(s.clasp_candidates, 1);
+  EXPECT_EQ(s.connect_outcomes.attempts, s.connect_outcomes.endings());
+  EXPECT_GE(s.connect_outcomes.accepted, 1);
+  EXPECT_EQ(static_cast<int>(s.tree_points.size()), s.nodes);
+  EXPECT_EQ(s.tree_parents.size(), s.tree_points.size());
+  EXPECT_FALSE(s.solution_nodes.empty());
+  EXPECT_GE(s.unpruned_waypoints, 2);
+  EXPECT_GT(r.timings.perception, 0.0);
+  EXPECT_GT(r.timings.search, 0.0);
+  EXPECT_GT(r.timings.verification, 0.0);
+  EXPECT_GE(r.timings.closing, 0.0);
+  EXPECT_GE(r.timings.pruning, 0.0);
+  EXPECT_GE(r.final_state.virtual_linking, sdh()->vlink_goal - 1e-9);
+  EXPECT_FALSE(r.final_state.finger_virtual_linking.empty());
+  EXPECT_EQ(r.final_state.finger_open_linking.size(), r.final_state.finger_virtual_linking.size());
+}
+
+TEST_F(PurseFromDepth, SameRequestSameResult) {
+  const tsrrt::ClaspResult again = plan_clasp(request_for(purse()));
+  ASSERT_EQ(again.motion.waypoints.size(), result_->motion.waypoints.size());
+  for (std::size_t i = 0; i < again.motion.waypoints.size(); ++i)
+    EXPECT_EQ(again.motion.waypoints[i], result_->motion.waypoints[i]) << "waypoint " << i;
+  EXPECT_EQ(again.statistics.nodes, result_->statistics.nodes);
+  EXPECT_EQ(again.final_state.virtual_linking, result_->final_state.virtual_linking);
+}
+
+TEST(ClaspSetup, CupWithoutHandleIsNoAnswerWithAReason) {
+  objects::Container cup;
+  cup.handle_radius = 0.0;
+  const tsrrt::ClaspResult r = plan_clasp(request_for(objects::container(cup)));
+  EXPECT_EQ(r.status, tsrrt::ClaspStatus::kNoClaspableLoop);
+  EXPECT_FALSE(r.success);
+  EXPECT_FALSE(r.reason.empty());
+  EXPECT_EQ(r.chosen_loop(), nullptr);
+  EXPECT_TRUE(r.motion.waypoints.empty());
+  EXPECT_GT(r.timings.perception, 0.0);
+}
+
+TEST(ClaspSetup, MalformedRequestsThrow) {
+  tsrrt::ClaspRequest no_robot = request_for(purse());
+  no_robot.robot = nullptr;
+  EXPECT_THROW(plan_clasp(no_robot), std::invalid_argument);
+
+  tsrrt::ClaspRequest too_long = request_for(purse());
+  too_long.start = Eigen::VectorXd::Zero(sdh()->dof() + 1);
+  EXPECT_THROW(plan_clasp(too_long), std::invalid_argument);
+
+  // A box around the whole robot: the start configuration is in collision.
+  tsrrt::ClaspRequest boxed = request_for(purse());
+  boxed.name = "boxed";
+  tsrrt::EnvironmentBox box;
+  box.size = Eigen::Vector3d(3, 3, 3);
+  boxed.environment.push_back(box);
+  try {
+    plan_clasp(boxed);
+    ADD_FAILURE() << "no exception";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find("boxed: the start configuration is in collision"),
+              std::string::npos)
+        << e.what();
+  }
+}
+
+}  // namespace
+}  // namespace claspplan::test

@@ -1,0 +1,66 @@
+#include "tsrrt/clasp_scene.hpp"
+
+#include <limits>
+#include <stdexcept>
+
+#include "perception/depth_surface.hpp"
+#include "tsrrt/clasp_planning.hpp"
+
+namespace claspplan::tsrrt {
+
+int choose_loop(const perception::ObjectModel& object, const std::optional<Eigen::Vector3d>& hint) {
+  int chosen = -1;
+  double best = std::numeric_limits<double>::infinity();
+  for (int i = 0; i < static_cast<int>(object.loops.size()); ++i) {
+    const perception::Loop& loop = object.loops[i];
+    if (!loop.claspable) continue;
+    if (!hint) return i;  // ranked best first
+    for (const auto& p : loop.points) {
+      if ((p - *hint).norm() < best) best = (p - *hint).norm(), chosen = i;
+    }
+  }
+  return chosen;
+}
+
+std::string no_loop_reason(const perception::ObjectModel& object) {
+  if (object.loops.empty() && object.unstable_loops > 0)
+    return "no stable loop: all " + std::to_string(object.unstable_loops) +
+           " loops of K_d fill in by d' = " + std::to_string(object.persistence_d) +
+           " m (gaps or holes narrower than a finger's)";
+  if (object.loops.empty()) return "the object has no loops (beta1 = 0)";
+  std::string why = "no claspable loop: ";
+  for (std::size_t i = 0; i < object.loops.size() && i < 3; ++i) {
+    why += (i ? "; " : "") + object.loops[i].reason;
+  }
+  return why;
+}
+
+void object_collision_mesh(const perception::ObjectModel& object, const perception::Loop& loop,
+                           const Eigen::AlignedBox3d& workspace, const std::string& name,
+                           std::vector<Eigen::Vector3d>& vertices,
+                           std::vector<Eigen::Vector3i>& triangles) {
+  vertices.clear();
+  triangles.clear();
+  if (!object.views.empty()) {
+    perception::DepthSurfaceOptions so;
+    so.workspace = workspace;
+    so.support_plane = object.support_plane;
+    const perception::TriangleMesh seen = perception::depth_surface_mesh(object.views, so);
+    vertices = seen.vertices;
+    for (const auto& t : seen.triangles) triangles.emplace_back(t[0], t[1], t[2]);
+  } else {
+    vertices = object.complex.points;
+    for (int i = 0; i < static_cast<int>(object.complex.triangles.size()); ++i) {
+      const auto v = object.complex.triangle_vertices(i);
+      triangles.emplace_back(v[0], v[1], v[2]);
+    }
+  }
+  if (triangles.empty()) {
+    throw std::invalid_argument((name.empty() ? "" : name + ": ") +
+                                "the object has no surface to collide with (no depth surface "
+                                "and no K_d triangles: raise perception.d or the point count)");
+  }
+  loop_tube(loop.points, kLoopTubeRadius, vertices, triangles);
+}
+
+}  // namespace claspplan::tsrrt

@@ -1,0 +1,222 @@
+#include "tsrrt/clasp_setup.hpp"
+
+#include <chrono>
+#include <stdexcept>
+#include <utility>
+
+#include "perception/mesh.hpp"
+#include "tsrrt/clasp_scene.hpp"
+
+namespace claspplan::tsrrt {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+using Say = std::function<void(const std::string&)>;
+
+double since(Clock::time_point t) {
+  return std::chrono::duration<double>(Clock::now() - t).count();
+}
+
+// The planner's default sample box: object and hand start, with 0.3 m of room around them, so
+// that the tree can find its way around obstacles next to the object.
+void fit_sample_box(PlannerParameters& p, const perception::ObjectModel& object,
+                    const Eigen::Vector3d& hand_start) {
+  Eigen::AlignedBox3d box = perception::bounds(object.cloud);
+  box.extend(hand_start);
+  p.sample_min = box.min() - Eigen::Vector3d::Constant(0.3);
+  p.sample_max = box.max() + Eigen::Vector3d::Constant(0.3);
+}
+
+// The clasp controller alone toward the nearest clasp target.
+void run_controller_only(const ClaspRequest& request, servo::ClaspController& controller,
+                         robots::CollisionWorld& world, double goal_linking, ClaspResult& r) {
+  const auto t = Clock::now();
+  servo::ControllerRunOptions options = request.controller_run;
+  options.goal_linking = goal_linking;
+  servo::ControllerRun run = servo::run_controller(controller, world, r.start, options);
+  r.timings.controller = since(t);
+  r.statistics.control_steps = static_cast<int>(run.waypoints.size()) - 1;
+  r.statistics.collided = run.collided;
+  r.statistics.linking_history = std::move(run.linking_history);
+  r.motion.target = run.target;
+  r.motion.waypoints = std::move(run.waypoints);
+  r.success = run.success;
+  r.reason = run.reason;
+}
+
+// TS-RRT with every goal node closed and verified at once (paper Sec. IV-D, V-A); with
+// verify_in_search an insecure clasp is rejected and the search goes on.
+void run_search(ClaspPlanningOptions planning, const perception::Loop& loop,
+                servo::ClaspController& controller, robots::CollisionWorld& world,
+                double goal_linking, const Say& say, ClaspResult& r) {
+  const robots::RobotModel& model = controller.model();
+  PlannerParameters pp = planning.planner;
+  if (!planning.sample_box_given) {
+    fit_sample_box(pp, r.object, controller.project(r.start).position);
+  }
+  if (pp.time_limit > 0.0) {
+    planning.secure.deadline = Clock::now() + std::chrono::duration_cast<Clock::duration>(
+                                                  std::chrono::duration<double>(pp.time_limit));
+  }
+  Eigen::VectorXd q_closed;
+  SecureClaspReport check;
+  int candidates = 0, screened = 0;
+  const auto close_and_verify = [&](const Eigen::VectorXd& q_goal) {
+    ++candidates;
+    auto t = Clock::now();
+    q_closed = close_fingers(model, world, q_goal, planning.closing);
+    r.timings.closing += since(t);
+    // A closable pose whose closed hand stays below the goal is no clasp: refused at once.
+    const double closed_linking = controller.project(q_closed).linking;
+    if (closed_linking < goal_linking && planning.verify_in_search) {
+      ++screened;
+      say("  clasp candidate " + std::to_string(candidates) +
+          ": the closed hand reaches virtual linking " + std::to_string(closed_linking) +
+          " only; refused");
+      return false;
+    }
+    say("  clasp candidate " + std::to_string(candidates) + ": fingers closed; verifying (" +
+        std::to_string(planning.secure.sequences) + " x " +
+        std::to_string(planning.secure.motions) + " random motions of the object) ...");
+    t = Clock::now();
+    bool screened_out = false;
+    check = screened_secure_clasp(model, r.collision_mesh.vertices, r.collision_mesh.triangles,
+                                  q_closed, loop.points, planning.secure, &screened_out);
+    r.timings.verification += since(t);
+    if (!check.secure) {
+      say("  rejected: the object got free in " + std::to_string(check.escaped_sequences) + " of " +
+          std::to_string(check.sequences) + " sequences" +
+          (screened_out ? " of the screening (the full check's first motions)" : ""));
+    }
+    return check.secure || !planning.verify_in_search;
+  };
+  // The tree stops at a closable pose; finger closing does the rest (paper Sec. V).
+  const double tolerance = planning.closable_linking > 0
+                               ? std::min(planning.closable_linking, goal_linking)
+                               : goal_linking;
+  ClaspProblem problem(controller, world, tolerance, planning.position_tolerance,
+                       planning.collision_resolution, close_and_verify);
+  std::vector<TaskPoint> goals;
+  for (const auto& g : controller.targets()) goals.push_back({g.point, 1.0});  // Alg. 1, line 9
+  say("planning (TS-RRT, " + std::to_string(goals.size()) + " clasp goals) ...");
+  auto t = Clock::now();
+  PlanResult plan = build_ts_rrt(problem, r.start, goals, pp);
+  r.timings.search = since(t);
+  r.timings.planning = r.timings.search - r.timings.closing - r.timings.verification;
+
+  ClaspStatistics& s = r.statistics;
+  s.cycles = plan.cycles;
+  s.nodes = plan.nodes;
+  s.control_steps = plan.control_steps;
+  s.clasp_candidates = candidates;
+  s.clasp_candidates_screened = screened;
+  s.connect_outcomes = plan.outcomes;
+  s.tree_points = std::move(plan.tree_points);
+  s.tree_parents = std::move(plan.tree_parents);
+  s.solution_nodes = std::move(plan.solution_nodes);
+  r.verification = check;
+  if (!plan.success) {
+    r.reason = plan.reason;
+    return;
+  }
+  say("  clasp found after " + std::to_string(plan.cycles) + " cycles, " +
+      std::to_string(plan.nodes) + " nodes; pruning the path ...");
+  r.motion.target = plan.goal_index;
+  s.unpruned_waypoints = static_cast<int>(plan.path.size());
+  t = Clock::now();
+  r.motion.waypoints = prune_path(problem, std::move(plan.path), planning.prune_attempts, pp.seed);
+  r.timings.pruning = since(t);
+  if (q_closed != r.motion.waypoints.back()) r.motion.waypoints.push_back(q_closed);
+  r.success = r.verified = check.secure;
+  r.reason = check.secure ? "verified clasp"
+                          : "the clasp failed verification: the object got free in " +
+                                std::to_string(check.escaped_sequences) + " of " +
+                                std::to_string(check.sequences) + " sequences";
+}
+
+}  // namespace
+
+ClaspResult plan_clasp(const ClaspRequest& request) {
+  const std::string prefix = request.name.empty() ? "" : request.name + ": ";
+  if (!request.robot) throw std::invalid_argument(prefix + "the request has no robot");
+  const robots::RobotModel& model = *request.robot;
+  const Say say = [&](const std::string& m) {
+    if (request.progress) request.progress(m);
+  };
+  // The stages' options with the request's overrides.
+  perception::PerceptionOptions perception = request.perception;
+  ClaspPlanningOptions planning = request.planning;
+  if (request.seed) {
+    perception.seed = planning.planner.seed = planning.secure.seed = *request.seed;
+  }
+  if (request.max_cycles) {
+    planning.planner.max_cycles = *request.max_cycles;
+    planning.planner.time_limit = 0.0;
+  }
+  if (request.time_limit) planning.planner.time_limit = *request.time_limit;
+
+  ClaspResult r;
+  r.start = model.complete_q(
+      std::vector<double>(request.start.data(), request.start.data() + request.start.size()));
+  // Loops are chosen for this hand: holes its fingers pass, bars its closed hand encloses.
+  r.hand = robots::hand_size(model);
+  perception.finger_thickness = r.hand.finger_thickness;
+  perception.closed_aperture = r.hand.closed_aperture;
+  if (request.progress) perception.progress = request.progress;
+
+  say("perceiving the object ...");
+  auto t = Clock::now();
+  r.object = perception::build_object_model(request.object, perception);
+  r.timings.perception = since(t);
+  r.loop = choose_loop(r.object, request.loop_hint);
+  if (r.loop < 0) {
+    r.status = ClaspStatus::kNoClaspableLoop;
+    r.reason = no_loop_reason(r.object);
+    return r;
+  }
+  const perception::Loop& loop = r.object.loops[r.loop];
+  for (const auto& g : perception::clasp_targets(loop, request.targets, r.hand.closed_aperture)) {
+    r.targets.push_back({g.p, g.tangent});
+  }
+
+  // The scene: the robot, the object's collision mesh and the static environment.
+  object_collision_mesh(r.object, loop, perception.workspace, request.name,
+                        r.collision_mesh.vertices, r.collision_mesh.triangles);
+  r.environment = request.environment;
+  robots::CollisionWorld world = make_collision_world(model, r);
+  robots::CollisionReport contact;
+  if (world.in_collision(r.start, &contact)) {
+    throw std::invalid_argument(prefix + "the start configuration is in collision (" +
+                                contact.first + " with " + contact.second + ")");
+  }
+
+  servo::ClaspController controller(model, loop.points, r.targets, request.controller);
+  const double goal_linking =
+      planning.goal_linking > 0.0 ? planning.goal_linking : model.vlink_goal;
+  if (request.mode == ClaspMode::kControllerOnly) {
+    say("running the controller alone toward the nearest clasp target ...");
+    run_controller_only(request, controller, world, goal_linking, r);
+  } else {
+    run_search(planning, loop, controller, world, goal_linking, say, r);
+  }
+  r.status = r.success ? ClaspStatus::kSuccess : ClaspStatus::kNoClasp;
+  if (r.motion.waypoints.empty()) return r;
+
+  // The final pose: virtual linking (eq. 4) and the open curves' Gauss integrals (Fig. 6).
+  r.motion.final_q = r.motion.waypoints.back();
+  const servo::TaskState final_state = controller.project(r.motion.final_q);
+  r.final_state.virtual_linking = final_state.linking;
+  r.final_state.finger_virtual_linking = final_state.finger_linking;
+  r.final_state.finger_open_linking = open_finger_linking(model, r.motion.final_q, loop.points);
+  return r;
+}
+
+robots::CollisionWorld make_collision_world(const robots::RobotModel& robot,
+                                            const ClaspResult& result) {
+  robots::CollisionWorld world(robot);
+  world.set_object(result.collision_mesh.vertices, result.collision_mesh.triangles);
+  for (const auto& b : result.environment) world.add_box(b.pose, b.size);
+  return world;
+}
+
+}  // namespace claspplan::tsrrt

@@ -1,0 +1,175 @@
+// The whole clasp job as one call, in memory: object input -> perception (K_d, loops ranked for
+// the hand) -> the loop to clasp and its targets -> the collision model -> TS-RRT with every goal
+// node closed and verified (or the clasp controller alone) -> pruning -> the final task state.
+// No files and no command-line types: `claspplan run` (examples/run_scenario.cpp) is a thin layer
+// that turns a scenario into a ClaspRequest and the ClaspResult into its files.
+//
+// Shape: a free function plan_clasp(request) -> result, not a SimpleSetup-like class. OMPL's
+// SimpleSetup keeps its parts (space information, problem definition, planner) because they exist
+// before solve() and a user configures them; here every part (controller, collision world, TS-RRT
+// problem) is bound to the loop that perception chooses in the middle of the call, so none exists
+// before it and none would be configurable. What a caller may need afterwards is data in the
+// result (object model, chosen loop, targets, collision mesh, environment, motion, tree), from
+// which make_collision_world() rebuilds the world the plan was checked against. Like Pinocchio's
+// model/data split, the request is constant input (the robot shared, never copied) and the
+// result all that was computed, so one robot serves many concurrent calls.
+#pragma once
+
+#include <cstdint>
+#include <functional>
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include <Eigen/Geometry>
+
+#include "perception/pipeline.hpp"
+#include "robots/collision_world.hpp"
+#include "robots/hand_size.hpp"
+#include "robots/robot_model.hpp"
+#include "servo/clasp_controller.hpp"
+#include "servo/controller_run.hpp"
+#include "tsrrt/clasp_planning.hpp"
+#include "tsrrt/planner.hpp"
+
+namespace claspplan::tsrrt {
+
+/// A static box of the environment (a table, a floor, a wall), world frame, centred at the pose.
+struct EnvironmentBox {
+  Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();
+  Eigen::Vector3d size = Eigen::Vector3d::Zero();
+};
+
+enum class ClaspMode {
+  kPlan,            ///< TS-RRT, fingers closed and the clasp verified at every goal node
+  kControllerOnly,  ///< the clasp controller alone toward the nearest clasp target, no search
+};
+
+struct ClaspRequest {
+  /// The robot (arm and hand); required. Shared, so that many requests use one model.
+  std::shared_ptr<const robots::RobotModel> robot;
+  /// The start configuration: all joints, or a prefix (arm, then hand) completed from the
+  /// robot's home (RobotModel::complete_q()).
+  Eigen::VectorXd start;
+  /// The object: depth views with their cameras, clouds, or meshes (world frame).
+  perception::PerceptionInputs object;
+  std::vector<EnvironmentBox> environment;
+  /// Clasp the claspable loop with a point nearest this one; none: the best ranked.
+  std::optional<Eigen::Vector3d> loop_hint;
+  int targets = 12;  ///< clasp targets on the chosen loop
+
+  /// The stages' options. The hand's sizes (finger thickness, closed aperture) in `perception`
+  /// are replaced by the robot's own (robots::hand_size()): loops are chosen for this hand.
+  perception::PerceptionOptions perception;
+  servo::ControllerParameters controller;
+  servo::ControllerRunOptions controller_run;  ///< kControllerOnly; its goal_linking is replaced
+  ClaspPlanningOptions planning;               ///< kPlan
+
+  ClaspMode mode = ClaspMode::kPlan;
+  /// When given, replaces the seed of every stage (perception, planner, pruning, verification);
+  /// else each stage's own seed is used (the pruning uses the planner's).
+  std::optional<std::uint64_t> seed;
+  /// Bound the search by TS-RRT cycles: the planner's cycle limit, and no time limit unless
+  /// time_limit is given too. Results then do not depend on the machine's speed or load.
+  std::optional<int> max_cycles;
+  std::optional<double> time_limit;  ///< seconds: replaces the planner's time limit
+
+  /// Optional progress lines (perception steps, clasp candidates, ...).
+  std::function<void(const std::string&)> progress;
+  /// Names the problem in error messages ("<name>: ..."), e.g. the scenario file; may be empty.
+  std::string name;
+};
+
+enum class ClaspStatus {
+  kSuccess,          ///< a verified clasp (kControllerOnly: the virtual-linking goal reached)
+  kNoClaspableLoop,  ///< a valid problem without an answer: no loop this hand can clasp
+  kNoClasp,          ///< ... no (verified) clasp within the budget, or the controller stopped
+};
+
+/// The object's collision model used everywhere (planning, closing, verification), world frame.
+struct CollisionMesh {
+  std::vector<Eigen::Vector3d> vertices;
+  std::vector<Eigen::Vector3i> triangles;
+};
+
+struct ClaspMotion {
+  /// Start to final configuration (the closed hand last); empty when no motion was found.
+  std::vector<Eigen::VectorXd> waypoints;
+  Eigen::VectorXd final_q;  ///< waypoints.back(), when there are waypoints
+  int target = -1;          ///< the clasp target reached or driven to (index into targets)
+};
+
+struct ClaspStatistics {
+  // kPlan: the TS-RRT search.
+  int cycles = 0;  ///< of Alg. 1's loop after the pre-expansion
+  int nodes = 0;
+  int control_steps = 0;     ///< controller steps of the search (kControllerOnly: of the run)
+  int clasp_candidates = 0;  ///< goal nodes closed (and verified unless screened)
+  int clasp_candidates_screened = 0;  ///< closed hands below the goal linking, refused unverified
+  ConnectOutcomes connect_outcomes;
+  int unpruned_waypoints = 0;  ///< of the found path, before pruning
+  /// The tree, for pictures: each node's task point and parent, and the solution's nodes.
+  std::vector<TaskPoint> tree_points;
+  std::vector<int> tree_parents;
+  std::vector<int> solution_nodes;
+  // kControllerOnly.
+  bool collided = false;                ///< a step would have collided
+  std::vector<double> linking_history;  ///< Π_vlink after every step (the start included)
+};
+
+/// The task state at the final configuration (paper eq. 4 and Fig. 6).
+struct ClaspTaskState {
+  double virtual_linking = 0.0;                ///< Π_vlink: mean |VLk| of the finger curves
+  std::vector<double> finger_virtual_linking;  ///< |VLk| per finger curve
+  std::vector<double> finger_open_linking;     ///< |Lk| of each open finger curve with the loop
+};
+
+/// Seconds per phase (wall clock; not part of any determinism guarantee).
+struct ClaspTimings {
+  double perception = 0.0;
+  double controller = 0.0;    ///< kControllerOnly: the controller run
+  double search = 0.0;        ///< kPlan: the whole TS-RRT search, closing and verification included
+  double planning = 0.0;      ///< ... of it the tree search alone
+  double closing = 0.0;       ///< ... the finger closing of the candidates
+  double verification = 0.0;  ///< ... the secure-clasp checks of the candidates
+  double pruning = 0.0;
+};
+
+struct ClaspResult {
+  ClaspStatus status = ClaspStatus::kNoClasp;
+  bool success = false;   ///< status == kSuccess
+  bool verified = false;  ///< kPlan: the final clasp passed the secure-clasp check
+  std::string reason;     ///< one line: why it succeeded or not
+
+  Eigen::VectorXd start;                    ///< the completed start configuration
+  robots::HandSize hand;                    ///< the hand sizes the loops were chosen for
+  perception::ObjectModel object;           ///< K_d, the ranked loops, ...
+  int loop = -1;                            ///< the chosen loop (index into object.loops), -1: none
+  std::vector<servo::ClaspTarget> targets;  ///< on the chosen loop
+  CollisionMesh collision_mesh;             ///< object surface and the loop's tube
+  std::vector<EnvironmentBox> environment;
+
+  ClaspMotion motion;
+  ClaspTaskState final_state;  ///< when motion.waypoints is not empty
+  /// The last verified candidate's check (clasp_candidates > clasp_candidates_screened).
+  SecureClaspReport verification;
+  ClaspStatistics statistics;
+  ClaspTimings timings;
+
+  /// The chosen loop, or nullptr.
+  const perception::Loop* chosen_loop() const { return loop >= 0 ? &object.loops[loop] : nullptr; }
+};
+
+/// Runs the whole job. Returns kNoClaspableLoop / kNoClasp (with a reason) for a valid problem
+/// without an answer. Throws std::invalid_argument for malformed input: no robot, a bad start
+/// configuration (outside the limits, or in collision), invalid object input or options, an
+/// object without a surface to collide with.
+ClaspResult plan_clasp(const ClaspRequest& request);
+
+/// The collision world a result's motion was checked in: the robot, the result's collision mesh
+/// and environment.
+robots::CollisionWorld make_collision_world(const robots::RobotModel& robot,
+                                            const ClaspResult& result);
+
+}  // namespace claspplan::tsrrt
