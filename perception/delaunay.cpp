@@ -70,8 +70,12 @@ DelaunayGraph delaunay_3d(const PointCloud& points) {
     const int a = f->first->vertex((i + 1) & 3)->info();
     const int b = f->first->vertex((i + 2) & 3)->info();
     const int c = f->first->vertex((i + 3) & 3)->info();
-    g.triangles.push_back({edge_id(a, b), edge_id(b, c), edge_id(a, c)});
+    std::array<int, 3> t{edge_id(a, b), edge_id(b, c), edge_id(a, c)};
+    std::sort(t.begin(), t.end());
+    g.triangles.push_back(t);
   }
+  // CGAL's facet order depends on memory addresses: a canonical order keeps results identical.
+  std::sort(g.triangles.begin(), g.triangles.end());
   return g;
 }
 
