@@ -9,38 +9,16 @@
 #include "perception/pipeline.hpp"
 #include "robots/hand_size.hpp"
 #include "test/support/cli_runner.hpp"
+#include "test/support/floor_scene.hpp"
 
 namespace claspplan::test {
 namespace {
 
 const std::vector<std::string> kHands = {"sdh", "dlr", "icub", "armar3"};
 
-// The object on the floor at x = 0.55, seen like purse_1: two depth cameras above the robot's
-// shoulders, 1 mm noise, the floor in the images.
-perception::PerceptionInputs seen_on_floor(perception::TriangleMesh object, double yaw = 0.0) {
-  Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();
-  pose.translate(Eigen::Vector3d(0.55, 0, 0));
-  pose.rotate(Eigen::AngleAxisd(yaw, Eigen::Vector3d::UnitZ()));
-  perception::TriangleMesh scene = perception::transformed(object, pose);
-  perception::append_mesh(scene, objects::ground_plane(2.0, 0.0, {0.5, 0.0}));
-  perception::PerceptionInputs in;
-  perception::DepthNoise noise;
-  noise.sigma = 0.001;
-  for (const Eigen::Vector3d& position :
-       {Eigen::Vector3d(0.2, -0.6, 0.85), Eigen::Vector3d(0.2, 0.6, 0.85)}) {
-    perception::DepthView v;
-    v.camera = objects::kinect_camera(position, {0.55, 0, 0.15});
-    v.image = perception::render_depth(scene, v.camera, noise);
-    in.depth_views.push_back(v);
-    ++noise.seed;
-  }
-  return in;
-}
-
 perception::ObjectModel perceive(const perception::PerceptionInputs& in, const std::string& hand) {
   perception::PerceptionOptions o;
-  o.workspace =
-      Eigen::AlignedBox3d(Eigen::Vector3d(0.2, -0.4, 0.003), Eigen::Vector3d(0.95, 0.4, 0.7));
+  o.workspace = floor_workspace();
   if (!hand.empty()) {
     const robots::HandSize size = robots::hand_size(robots::load_robot("kr5_" + hand));
     o.finger_thickness = size.finger_thickness;
@@ -106,8 +84,7 @@ TEST(LoopChoice, MorePointsNeverMeanMoreLoops) {
   for (int n : {2000, 10000, 40000}) {
     perception::PerceptionOptions o;
     o.points = n;
-    o.workspace =
-        Eigen::AlignedBox3d(Eigen::Vector3d(0.2, -0.4, 0.003), Eigen::Vector3d(0.95, 0.4, 0.7));
+    o.workspace = floor_workspace();
     const perception::ObjectModel m = perception::build_object_model(in, o);
     int claspable = 0;
     for (const auto& l : m.loops) claspable += l.claspable;

@@ -7,30 +7,10 @@
 
 #include "examples/objects.hpp"
 #include "perception/depth_render.hpp"
+#include "test/support/floor_scene.hpp"
 
 namespace claspplan::test {
 namespace {
-
-// The object on the floor at x = 0.55, seen by two depth cameras above the robot's shoulders
-// (1 mm noise, the floor in the images), like the purse_1 scenarios.
-perception::PerceptionInputs seen_on_floor(const perception::TriangleMesh& object) {
-  Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();
-  pose.translate(Eigen::Vector3d(0.55, 0, 0));
-  perception::TriangleMesh scene = perception::transformed(object, pose);
-  perception::append_mesh(scene, objects::ground_plane(2.0, 0.0, {0.5, 0.0}));
-  perception::PerceptionInputs in;
-  perception::DepthNoise noise;
-  noise.sigma = 0.001;
-  for (const Eigen::Vector3d& position :
-       {Eigen::Vector3d(0.2, -0.6, 0.85), Eigen::Vector3d(0.2, 0.6, 0.85)}) {
-    perception::DepthView v;
-    v.camera = objects::kinect_camera(position, {0.55, 0, 0.15});
-    v.image = perception::render_depth(scene, v.camera, noise);
-    in.depth_views.push_back(v);
-    ++noise.seed;
-  }
-  return in;
-}
 
 const std::shared_ptr<const robots::RobotModel>& sdh() {
   static const auto robot =
