@@ -1,5 +1,7 @@
 #include "tsrrt/clasp_scene.hpp"
 
+#include <algorithm>
+#include <cstdio>
 #include <limits>
 #include <stdexcept>
 
@@ -23,15 +25,21 @@ int choose_loop(const perception::ObjectModel& object, const std::optional<Eigen
 }
 
 std::string no_loop_reason(const perception::ObjectModel& object) {
-  if (object.loops.empty() && object.unstable_loops > 0)
+  if (object.loops.empty() && object.unstable_loops > 0) {
+    char d[32];
+    std::snprintf(d, sizeof d, "%.4f", object.persistence_d);
     return "no stable loop: all " + std::to_string(object.unstable_loops) +
-           " loops of K_d fill in by d' = " + std::to_string(object.persistence_d) +
-           " m (gaps or holes narrower than a finger's)";
-  if (object.loops.empty()) return "the object has no loops (beta1 = 0)";
-  std::string why = "no claspable loop: ";
-  for (std::size_t i = 0; i < object.loops.size() && i < 3; ++i) {
-    why += (i ? "; " : "") + object.loops[i].reason;
+           " loops of K_d fill in by d' = " + d + " m (gaps or holes narrower than a finger's)";
   }
+  if (object.loops.empty()) return "the object has no loops (beta1 = 0)";
+  // The widest holes first: why the most promising loops were refused.
+  std::vector<const perception::Loop*> widest;
+  for (const auto& l : object.loops) widest.push_back(&l);
+  std::stable_sort(widest.begin(), widest.end(),
+                   [](const auto* a, const auto* b) { return a->hole_width > b->hole_width; });
+  std::string why = "no claspable loop: ";
+  for (std::size_t i = 0; i < widest.size() && i < 3; ++i)
+    why += (i ? "; " : "") + widest[i]->reason;
   return why;
 }
 
