@@ -158,14 +158,6 @@ double bar_at(const PointIndex& index, const std::vector<DepthView>& views,
   return doubtful > 1 ? kInf : diameter;
 }
 
-// Arc-length positions of kBarSamples places along a closed polyline, with unit tangents.
-std::vector<std::pair<Eigen::Vector3d, Eigen::Vector3d>> arc_samples(
-    const std::vector<Eigen::Vector3d>& loop, int k) {
-  std::vector<std::pair<Eigen::Vector3d, Eigen::Vector3d>> out;
-  for (const auto& g : clasp_targets(loop, k)) out.emplace_back(g.p, g.tangent);
-  return out;
-}
-
 void measure_bar(Loop& loop, const PointIndex& index, const std::vector<DepthView>& views,
                  const RankingOptions& o) {
   double link = o.link_distance;
@@ -174,8 +166,10 @@ void measure_bar(Loop& loop, const PointIndex& index, const std::vector<DepthVie
   const double finger = o.finger_thickness > 0 ? o.finger_thickness : 0.5 * o.min_hole;
   loop.bar_profile.clear();
   std::vector<double> measured;
-  for (const auto& [p, t] : arc_samples(loop.points, kBarSamples)) {
-    const double b = bar_at(index, views, o.support_plane, p, t, link, cap, finger);
+  // The places: kBarSamples points equally spaced by arc length, with their tangents.
+  for (const auto& place : clasp_targets(loop.points, kBarSamples)) {
+    const double b =
+        bar_at(index, views, o.support_plane, place.p, place.tangent, link, cap, finger);
     loop.bar_profile.push_back(b);
     if (b > 0) measured.push_back(b);
   }
@@ -346,7 +340,7 @@ void assess(Loop& loop, const PointIndex& index, const std::vector<DepthView>& v
     if (std::abs(descent) > 1e-9) {
       const double t_floor = height / std::abs(descent);
       if (t_floor < std::max(kMinRoom, 2.0 * options.finger_thickness)) {
-        loop.verdict = "cavity";
+        loop.verdict = "blocked_by_support";
         loop.reason =
             "blocked by the support: the passage through the loop meets the "
             "supporting surface " +

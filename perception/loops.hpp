@@ -13,14 +13,16 @@
 //    directions for max(2 x width, 0.1 m). If cloud points fall inside it, or at either end the
 //    points within 1.5 hole radii surround the axis (no angular gap over 90 degrees), the loop runs
 //    around material (a tube's wall), not around a hole -> "loop around a tube wall".
-//  - through, not into a cavity: followed along either normal direction until it leaves the
-//    object's bounds, the passage must not end at the supporting surface. A container's mouth (its
-//    inside bottom unseen or removed with the table) and a hole lying flat on the table end there
-//    -> "opening into a cavity".
+//  - through, not into a cavity (with a known supporting plane): followed downwards, the passage
+//    must not meet the support within max(5 cm, two finger thicknesses) -> "blocked by the
+//    support" (a hole lying on the table), nor meet it, inside the object's bounds, after running
+//    between walls on every side -> "opening into a cavity" (a container's mouth, its inside
+//    bottom unseen or removed with the table).
 //  - hand fit (only when a hand's sizes are given): the hole must be wider than the fingers
-//    (finger thickness + 5 mm) -> else "too narrow for this hand"; the bar (the material the loop
-//    runs along, measured across the loop at 48 places) must fit inside the closed hand somewhere
-//    -> else "bar too thick for this hand".
+//    (finger thickness + 5 mm; checked with the hole width, first) -> else "too narrow for this
+//    hand"; the bar (the material the loop runs along, measured across the loop at 48 places, with
+//    room for the closed fingers around it) must fit inside the closed hand at three places at
+//    least -> else "bar too thick for this hand".
 //  - otherwise claspable.
 // Order: claspable loops first, the best fit for the hand first (widest hole without a hand); then
 // the others, shortest first.
@@ -42,8 +44,8 @@ struct Loop {
   int rank = 0;                         ///< 1 = best
   bool claspable = false;
   std::string reason;  ///< one line: the verdict and its measure
-  /// One word for the verdict: claspable, too_narrow, occlusion_shadow, tube_wall, cavity,
-  /// hand_too_large, bar_too_thick, degenerate.
+  /// One word for the verdict: claspable, too_narrow, hand_too_large, occlusion_shadow,
+  /// tube_wall, blocked_by_support, cavity, bar_too_thick, degenerate.
   std::string verdict;
   double hole_width = 0.0;  ///< metres (0 if not measured)
   /// Bar thickness across the loop at kBarSamples equally spaced places (arc length, from the
