@@ -1,0 +1,97 @@
+// Internals shared by the readers and writers of file_io.hpp (not installed): the size limit,
+// the one-line errors naming the file, tokenizing, number parsing, point and face checks, and the
+// plumbing of the writers.
+#pragma once
+
+#include <algorithm>
+#include <array>
+#include <fstream>
+#include <string>
+#include <vector>
+
+#include "perception/mesh.hpp"
+
+namespace claspplan::perception::file_io_detail {
+
+constexpr long long kMaxCount = 50'000'000;
+
+/// Throws std::invalid_argument "<path>: <message>".
+[[noreturn]] void fail(const std::string& path, const std::string& message);
+
+/// The whole file; fails when it is missing, not a regular file, unreadable or empty.
+std::string read_all(const std::string& path);
+
+std::string lower(std::string s);
+
+/// The lower-case extension of a path, with its dot.
+std::string extension(const std::string& path);
+
+bool is_space(char c);
+
+// Splits a line into whitespace- (and optionally comma-) separated tokens.
+std::vector<std::string> split(const std::string& line, bool commas = false);
+
+bool parse_double(const std::string& token, double& value);
+bool parse_integer(const std::string& token, long long& value);
+
+// Line reader over a whole file held in memory.
+class Lines {
+ public:
+  explicit Lines(const std::string& data, size_t start = 0) : data_(data), pos_(start) {}
+  bool next(std::string& line) {
+    if (pos_ >= data_.size()) return false;
+    size_t end = data_.find('\n', pos_);
+    if (end == std::string::npos) end = data_.size();
+    line.assign(data_, pos_, end - pos_);
+    if (!line.empty() && line.back() == '\r') line.pop_back();
+    pos_ = end + 1;
+    ++number_;
+    return true;
+  }
+  size_t position() const { return std::min(pos_, data_.size()); }
+  int number() const { return number_; }
+
+ private:
+  const std::string& data_;
+  size_t pos_;
+  int number_ = 0;
+};
+
+// Whitespace tokens over a buffer, from a start offset, without copying the buffer.
+class Tokens {
+ public:
+  Tokens(const std::string& data, size_t start) : data_(data), pos_(start) {}
+  bool next(std::string& token) {
+    while (pos_ < data_.size() && is_space(data_[pos_])) ++pos_;
+    if (pos_ >= data_.size()) return false;
+    const size_t b = pos_;
+    while (pos_ < data_.size() && !is_space(data_[pos_])) ++pos_;
+    token.assign(data_, b, pos_ - b);
+    return true;
+  }
+
+ private:
+  const std::string& data_;
+  size_t pos_;
+};
+
+/// Fails when a point has a NaN or infinite coordinate.
+void check_point(const std::string& path, const Eigen::Vector3d& p, long long index);
+
+/// Appends a polygon as a triangle fan; fails on fewer than 3 vertices or an index outside [0, nv).
+void fan(std::vector<std::array<int, 3>>& tris, const std::vector<long long>& face, long long nv,
+         const std::string& path, long long index);
+
+/// Writers: an output stream at full double precision; throws std::runtime_error if it cannot be
+/// opened.
+std::ofstream open_out(const std::string& path, bool binary);
+
+template <class T>
+void put(std::ofstream& out, T v) {
+  out.write(reinterpret_cast<const char*>(&v), sizeof(T));
+}
+
+/// Flushes; throws std::runtime_error when writing failed.
+void finish(std::ofstream& out, const std::string& path);
+
+}  // namespace claspplan::perception::file_io_detail
