@@ -1,0 +1,44 @@
+// Internals of load_robot() (not installed): the steps that turn a hand description (YAML) and
+// its URDF into a RobotModel. urdf_tree.cpp reads the URDF's links, joints and collision shapes;
+// hand_description.cpp reads the YAML and checks it against the URDF; robot_model.cpp finds the
+// files. Every problem is a one-line std::invalid_argument naming the file.
+#pragma once
+
+#include <functional>
+#include <map>
+#include <string>
+#include <utility>
+
+#include <urdf_parser/urdf_parser.h>
+
+#include "robots/robot_model.hpp"
+
+namespace claspplan::robots::robot_model_detail {
+
+/// Throws std::invalid_argument "<file>: <what>".
+[[noreturn]] void fail(const std::string& file, const std::string& what);
+
+/// The text on one line (newlines as spaces, no trailing spaces).
+std::string one_line(std::string s);
+
+/// Parses a URDF; its errors (reported through console_bridge) become the exception's message.
+urdf::ModelInterfaceSharedPtr parse_urdf(const std::string& text, const std::string& file);
+
+/// The URDF's joints, for the checks of the hand description.
+struct UrdfJoints {
+  std::map<std::string, const urdf::Joint*> joint_of_link;  ///< by child link name
+  std::map<std::string, int> link_by_joint;                 ///< link index by joint name
+};
+
+/// Fills model.links (parents first, depth-first) and model.shapes from the URDF tree.
+UrdfJoints read_urdf_tree(const urdf::ModelInterface& urdf, const std::string& urdf_file,
+                          RobotModel& model);
+
+/// Reads a URDF: (its name for messages, its text), given the name the hand description uses.
+using UrdfReader = std::function<std::pair<std::string, std::string>(const std::string&)>;
+
+/// The model from a hand description's text and a way to read the URDF it names.
+RobotModel build_robot(const std::string& yaml_text, const std::string& yaml_file,
+                       const UrdfReader& read_urdf, const std::string& source);
+
+}  // namespace claspplan::robots::robot_model_detail

@@ -1,0 +1,198 @@
+// The URDF part of a robot model: parsing (urdfdom), the link tree and the collision shapes.
+#include <cmath>
+#include <mutex>
+#include <vector>
+
+#include <console_bridge/console.h>
+
+#include "robots/robot_model_detail.hpp"
+
+namespace claspplan::robots::robot_model_detail {
+
+namespace {
+
+// urdfdom reports problems through console_bridge; keep the first error for the message and
+// keep stderr clean.
+class CaptureErrors : public console_bridge::OutputHandler {
+ public:
+  void log(const std::string& text, console_bridge::LogLevel level, const char*, int) override {
+    if (level >= console_bridge::CONSOLE_BRIDGE_LOG_ERROR && first_error.empty()) {
+      first_error = one_line(text);
+    }
+  }
+  std::string first_error;
+};
+
+std::mutex& urdf_mutex() {
+  static std::mutex m;
+  return m;
+}
+
+Eigen::Isometry3d to_isometry(const urdf::Pose& p) {
+  Eigen::Isometry3d t = Eigen::Isometry3d::Identity();
+  t.translation() = Eigen::Vector3d(p.position.x, p.position.y, p.position.z);
+  t.linear() =
+      Eigen::Quaterniond(p.rotation.w, p.rotation.x, p.rotation.y, p.rotation.z).toRotationMatrix();
+  return t;
+}
+
+bool finite(const Eigen::Isometry3d& t) {
+  return t.matrix().allFinite();
+}
+
+// Converts the URDF <collision> elements of one link; merges cylinder + two end spheres into a
+// capsule (URDF has no capsule primitive).
+std::vector<CollisionShape> link_shapes(const urdf::Link& link, int index,
+                                        const std::string& file) {
+  std::vector<CollisionShape> shapes;
+  for (const auto& c : link.collision_array) {
+    if (!c || !c->geometry) continue;
+    CollisionShape s;
+    s.link = index;
+    s.origin = to_isometry(c->origin);
+    if (!finite(s.origin)) fail(file, "link '" + link.name + "': collision origin is not finite");
+    switch (c->geometry->type) {
+      case urdf::Geometry::BOX: {
+        const auto& b = static_cast<const urdf::Box&>(*c->geometry);
+        s.type = CollisionShape::Type::kBox;
+        s.size = Eigen::Vector3d(b.dim.x, b.dim.y, b.dim.z);
+        if (!s.size.allFinite() || (s.size.array() <= 0).any())
+          fail(file, "link '" + link.name + "': box sizes must be finite and > 0");
+        break;
+      }
+      case urdf::Geometry::SPHERE: {
+        const auto& sp = static_cast<const urdf::Sphere&>(*c->geometry);
+        s.type = CollisionShape::Type::kSphere;
+        s.radius = sp.radius;
+        if (!std::isfinite(s.radius) || s.radius <= 0)
+          fail(file, "link '" + link.name + "': sphere radius must be finite and > 0");
+        break;
+      }
+      case urdf::Geometry::CYLINDER: {
+        const auto& cy = static_cast<const urdf::Cylinder&>(*c->geometry);
+        s.type = CollisionShape::Type::kCylinder;
+        s.radius = cy.radius;
+        s.length = cy.length;
+        if (!std::isfinite(s.radius) || s.radius <= 0 || !std::isfinite(s.length) || s.length <= 0)
+          fail(file, "link '" + link.name + "': cylinder radius and length must be finite and > 0");
+        break;
+      }
+      default:
+        fail(file,
+             "link '" + link.name +
+                 "': only box, sphere and cylinder collision geometry is supported (no meshes)");
+    }
+    shapes.push_back(s);
+  }
+  // Capsule merge.
+  std::vector<bool> used(shapes.size(), false);
+  std::vector<CollisionShape> merged;
+  for (size_t i = 0; i < shapes.size(); ++i) {
+    if (shapes[i].type != CollisionShape::Type::kCylinder || used[i]) continue;
+    const CollisionShape& cy = shapes[i];
+    const Eigen::Vector3d axis = cy.origin.linear().col(2);
+    const Eigen::Vector3d ends[2] = {cy.origin.translation() + 0.5 * cy.length * axis,
+                                     cy.origin.translation() - 0.5 * cy.length * axis};
+    int found[2] = {-1, -1};
+    for (int e = 0; e < 2; ++e) {
+      for (size_t j = 0; j < shapes.size(); ++j) {
+        if (used[j] || j == i || static_cast<int>(j) == found[0]) continue;
+        const CollisionShape& sp = shapes[j];
+        if (sp.type == CollisionShape::Type::kSphere && std::abs(sp.radius - cy.radius) < 1e-9 &&
+            (sp.origin.translation() - ends[e]).norm() < 1e-6) {
+          found[e] = static_cast<int>(j);
+          break;
+        }
+      }
+    }
+    if (found[0] >= 0 && found[1] >= 0) {
+      used[i] = used[found[0]] = used[found[1]] = true;
+      CollisionShape cap = cy;
+      cap.type = CollisionShape::Type::kCapsule;
+      merged.push_back(cap);
+    }
+  }
+  for (size_t i = 0; i < shapes.size(); ++i)
+    if (!used[i]) merged.push_back(shapes[i]);
+  return merged;
+}
+
+// Appends link l (child of parent) and, depth-first, its subtree.
+void add_subtree(const urdf::Link& l, int parent, const std::string& urdf_file, RobotModel& m,
+                 UrdfJoints& joints) {
+  Link link;
+  link.name = l.name;
+  link.parent = parent;
+  if (l.parent_joint) {
+    const urdf::Joint& j = *l.parent_joint;
+    link.joint = j.name;
+    link.origin = to_isometry(j.parent_to_joint_origin_transform);
+    if (!finite(link.origin)) fail(urdf_file, "joint '" + j.name + "': origin is not finite");
+    switch (j.type) {
+      case urdf::Joint::FIXED:
+        link.type = JointType::kFixed;
+        break;
+      case urdf::Joint::REVOLUTE:
+      case urdf::Joint::CONTINUOUS:
+        link.type = JointType::kRevolute;
+        break;
+      case urdf::Joint::PRISMATIC:
+        link.type = JointType::kPrismatic;
+        break;
+      default:
+        fail(urdf_file,
+             "joint '" + j.name +
+                 "': only fixed, revolute, continuous and prismatic joints are supported");
+    }
+    if (link.type != JointType::kFixed) {
+      link.axis = Eigen::Vector3d(j.axis.x, j.axis.y, j.axis.z);
+      if (!link.axis.allFinite() || link.axis.norm() < 1e-9)
+        fail(urdf_file, "joint '" + j.name + "': axis must be a finite non-zero vector");
+      link.axis.normalize();
+    }
+    joints.joint_of_link[l.name] = &j;
+  }
+  const int index = static_cast<int>(m.links.size());
+  m.links.push_back(link);
+  for (const auto& s : link_shapes(l, index, urdf_file)) {
+    m.links[index].shapes.push_back(static_cast<int>(m.shapes.size()));
+    m.shapes.push_back(s);
+  }
+  for (const auto& child : l.child_links) add_subtree(*child, index, urdf_file, m, joints);
+}
+
+}  // namespace
+
+urdf::ModelInterfaceSharedPtr parse_urdf(const std::string& text, const std::string& file) {
+  if (text.find_first_not_of(" \t\r\n") == std::string::npos) fail(file, "the URDF is empty");
+  std::lock_guard<std::mutex> lock(urdf_mutex());
+  CaptureErrors capture;
+  console_bridge::OutputHandler* previous = console_bridge::getOutputHandler();
+  console_bridge::useOutputHandler(&capture);
+  urdf::ModelInterfaceSharedPtr model;
+  try {
+    model = urdf::parseURDF(text);
+  } catch (const std::exception& e) {
+    capture.first_error = one_line(e.what());
+  }
+  console_bridge::useOutputHandler(previous);
+  if (!model) {
+    fail(file, "not a valid URDF: " + (capture.first_error.empty() ? std::string("parse failed")
+                                                                   : capture.first_error));
+  }
+  return model;
+}
+
+UrdfJoints read_urdf_tree(const urdf::ModelInterface& urdf, const std::string& urdf_file,
+                          RobotModel& m) {
+  // Links, parents first (depth-first; urdfdom orders children by joint name).
+  const auto urdf_root = urdf.getRoot();
+  if (!urdf_root) fail(urdf_file, "the URDF has no root link");
+  UrdfJoints joints;
+  add_subtree(*urdf_root, -1, urdf_file, m, joints);
+  for (size_t i = 1; i < m.links.size(); ++i)
+    joints.link_by_joint[m.links[i].joint] = static_cast<int>(i);
+  return joints;
+}
+
+}  // namespace claspplan::robots::robot_model_detail
