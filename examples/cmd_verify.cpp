@@ -1,10 +1,9 @@
 // `claspplan verify RESULT.json [--json]`: the secure-clasp check (paper Sec. V-A) again, on a
 // saved result alone: its robot, final configuration, loop and object collision mesh.
-#include <cmath>
 #include <cstdio>
-#include <fstream>
 
 #include "examples/command.hpp"
+#include "examples/result_file.hpp"
 #include "examples/run_scenario.hpp"
 #include "robots/robot_model.hpp"
 #include "tsrrt/clasp_planning.hpp"
@@ -19,85 +18,12 @@ struct VerifyOptions {
   bool json = false;
 };
 
-// Typed access to result.json, naming the file and key in every error.
-class ResultReader {
- public:
-  explicit ResultReader(const std::string& path) : path_(path) {
-    std::ifstream in(path);
-    if (!in) throw std::invalid_argument(path + ": cannot open result file");
-    try {
-      j_ = nlohmann::json::parse(in);
-    } catch (const nlohmann::json::exception& e) {
-      throw std::invalid_argument(path + ": not valid JSON (" + std::string(e.what()) + ")");
-    }
-    if (!j_.is_object()) throw std::invalid_argument(path + ": expected a JSON object");
-  }
-
-  const nlohmann::json& at(const std::string& key) const {
-    if (!j_.contains(key)) fail(key, "missing (is this a claspplan result.json?)");
-    return j_[key];
-  }
-
-  [[noreturn]] void fail(const std::string& key, const std::string& what) const {
-    throw std::invalid_argument(path_ + ": " + key + ": " + what);
-  }
-
-  double number(const nlohmann::json& v, const std::string& key) const {
-    if (!v.is_number()) fail(key, "expected numbers");
-    const double x = v.get<double>();
-    if (!std::isfinite(x)) fail(key, "not finite");
-    return x;
-  }
-
-  std::vector<Eigen::Vector3d> points(const nlohmann::json& list, const std::string& key) const {
-    if (!list.is_array()) fail(key, "expected a list of [x, y, z]");
-    std::vector<Eigen::Vector3d> out;
-    for (const auto& p : list) {
-      if (!p.is_array() || p.size() != 3) fail(key, "expected [x, y, z] entries");
-      out.emplace_back(number(p[0], key), number(p[1], key), number(p[2], key));
-    }
-    return out;
-  }
-
-  const nlohmann::json& json() const { return j_; }
-
- private:
-  std::string path_;
-  nlohmann::json j_;
-};
-
 int run_verify(VerifyOptions o) {
-  const ResultReader r(o.result);
-  if (!r.at("robot").is_string()) r.fail("robot", "expected a robot name or path");
-  const robots::RobotModel model = robots::load_robot(r.at("robot").get<std::string>());
-  const nlohmann::json& final_q = r.at("final_q");
-  if (!final_q.is_array() || static_cast<int>(final_q.size()) != model.dof()) {
-    r.fail("final_q",
-           "expected " + std::to_string(model.dof()) + " joint values for " + model.name);
-  }
-  Eigen::VectorXd q(model.dof());
-  for (int i = 0; i < model.dof(); ++i) q[i] = r.number(final_q[i], "final_q");
-  const servo::Points loop = r.points(r.at("loop"), "loop");
-  servo::validate_curve(loop, true, o.result + ": loop");
-  const nlohmann::json& mesh = r.at("object_mesh");
-  if (!mesh.is_object() || !mesh.contains("vertices") || !mesh.contains("triangles")) {
-    r.fail("object_mesh", "expected {vertices, triangles}");
-  }
-  const std::vector<Eigen::Vector3d> vertices = r.points(mesh["vertices"], "object_mesh.vertices");
-  std::vector<Eigen::Vector3i> triangles;
-  for (const auto& t : mesh["triangles"]) {
-    if (!t.is_array() || t.size() != 3 || !t[0].is_number_integer() || !t[1].is_number_integer() ||
-        !t[2].is_number_integer()) {
-      r.fail("object_mesh.triangles", "expected [i, j, k] vertex indices");
-    }
-    triangles.emplace_back(t[0].get<int>(), t[1].get<int>(), t[2].get<int>());
-  }
-  if (!o.seed_given && r.json().contains("seed") && r.json()["seed"].is_number_unsigned()) {
-    o.check.seed = r.json()["seed"].get<std::uint64_t>();
-  }
+  const ResultFile r = read_result_file(o.result);
+  if (!o.seed_given && r.seed) o.check.seed = *r.seed;
 
-  const tsrrt::SecureClaspReport v =
-      tsrrt::check_secure_clasp(model, vertices, triangles, q, loop, o.check);
+  const tsrrt::SecureClaspReport v = tsrrt::check_secure_clasp(
+      r.model, r.object_vertices, r.object_triangles, r.final_q, r.loop, o.check);
   if (o.json) {
     nlohmann::json j = verification_json(v);
     j["open_linking"] = v.open_linking;

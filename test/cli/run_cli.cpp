@@ -5,6 +5,7 @@
 #include <Eigen/Geometry>
 #include <gtest/gtest.h>
 
+#include "examples/result_file.hpp"
 #include "robots/collision_world.hpp"
 #include "robots/kinematics.hpp"
 #include "test/support/cli_runner.hpp"
@@ -21,12 +22,6 @@ std::string scenario(const std::string& name) {
 json read_json(const std::string& path) {
   std::ifstream in(path);
   return json::parse(in);
-}
-
-Eigen::VectorXd vector_of(const json& a) {
-  Eigen::VectorXd v(a.size());
-  for (std::size_t i = 0; i < a.size(); ++i) v[i] = a[i].get<double>();
-  return v;
 }
 
 // --- Controller-only clasping (servo issue) ------------------------------------------------------
@@ -169,31 +164,16 @@ void expect_connect_outcomes(const json& o) {
 
 // Checks a planned result: the path starts at the scenario's start, every segment is free at a
 // resolution finer than the planner's (0.02 rad), and the final pose ends the path.
-void expect_collision_free_path(const json& result) {
-  const robots::RobotModel model = robots::load_robot(result["robot"].get<std::string>());
-  robots::CollisionWorld world(model);
-  std::vector<Eigen::Vector3d> vertices;
-  for (const auto& v : result["object_mesh"]["vertices"]) {
-    vertices.emplace_back(v[0].get<double>(), v[1].get<double>(), v[2].get<double>());
-  }
-  std::vector<Eigen::Vector3i> triangles;
-  for (const auto& t : result["object_mesh"]["triangles"]) {
-    triangles.emplace_back(t[0].get<int>(), t[1].get<int>(), t[2].get<int>());
-  }
-  world.set_object(vertices, triangles);
-  for (const auto& b : result["environment"]["boxes"]) {
-    Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();
-    for (int r = 0; r < 3; ++r)
-      for (int c = 0; c < 3; ++c) pose.linear()(r, c) = b["rotation"][r][c].get<double>();
-    pose.translation() = vector_of(b["position"]);
-    world.add_box(pose, vector_of(b["size"]));
-  }
-  const auto& waypoints = result["waypoints"];
+void expect_collision_free_path(const std::string& result_path) {
+  const cli::ResultFile result = cli::read_result_file(result_path, /*with_path=*/true);
+  robots::CollisionWorld world(result.model);
+  world.set_object(result.object_vertices, result.object_triangles);
+  for (const auto& b : result.environment) world.add_box(b.pose, b.size);
+  const auto& waypoints = result.waypoints;
   ASSERT_GE(waypoints.size(), 2u);
   for (std::size_t i = 0; i + 1 < waypoints.size(); ++i) {
     robots::CollisionReport report;
-    EXPECT_TRUE(
-        world.motion_free(vector_of(waypoints[i]), vector_of(waypoints[i + 1]), 0.005, &report))
+    EXPECT_TRUE(world.motion_free(waypoints[i], waypoints[i + 1], 0.005, &report))
         << "segment " << i << ": " << report.first << " with " << report.second;
   }
 }
@@ -229,7 +209,7 @@ TEST_P(PlannedClasp, IsVerifiedAndCollisionFree) {
   EXPECT_EQ(result["connect_outcomes"], s["connect_outcomes"]);
   EXPECT_TRUE(result["verification"]["secure"].get<bool>());
   EXPECT_EQ(result["verification"]["escaped_sequences"], 0);
-  expect_collision_free_path(result);
+  expect_collision_free_path(dir.file("out/result.json"));
 }
 
 // Fixed seeds; measured success rates over more seeds are in the issue notes and the README.
@@ -263,6 +243,9 @@ class PlannedPurse : public ::testing::Test {
     delete dir_;
   }
   static json result() { return read_json(dir_->file("a/result.json")); }
+  static Eigen::VectorXd final_q() {
+    return cli::read_result_file(dir_->file("a/result.json")).final_q;
+  }
   static inline TempDir* dir_ = nullptr;
   static inline CliResult* run_ = nullptr;
 };
@@ -291,8 +274,7 @@ TEST_F(PlannedPurse, VerifyPassesTheFinalPoseAndFailsWeakOnes) {
   // The same pose with the hand open: the object slides out.
   const robots::RobotModel model = robots::load_robot("kr5_armar3");
   json open = result();
-  Eigen::VectorXd q = vector_of(open["final_q"]);
-  q = model.open_hand(q);
+  const Eigen::VectorXd q = model.open_hand(final_q());
   open["final_q"] = std::vector<double>(q.data(), q.data() + q.size());
   const CliResult o = run_cli({"verify", dir_->write("open.json", open.dump()), "--json"});
   EXPECT_EQ(o.exit_code, 1) << o.out << o.err;
@@ -302,7 +284,7 @@ TEST_F(PlannedPurse, VerifyPassesTheFinalPoseAndFailsWeakOnes) {
   // The closed hand holding the loop only at its fingertips: the object moved along the hand's
   // approach direction until just the tips reach it (the first such offset that is collision-free).
   robots::RobotData data(model);
-  robots::forward_kinematics(model, vector_of(result()["final_q"]), data);
+  robots::forward_kinematics(model, final_q(), data);
   const Eigen::Vector3d forward = robots::vector_direction(data, model.v_fwd);
   bool tested = false;
   for (double offset = 0.03; offset <= 0.12 && !tested; offset += 0.01) {
