@@ -1,5 +1,8 @@
 #include <cstdint>
 #include <cstring>
+#include <functional>
+#include <string>
+#include <vector>
 
 #include "perception/file_io.hpp"
 #include "perception/file_io_detail.hpp"
@@ -51,16 +54,19 @@ double read_float(const unsigned char* p, int size) {
   return d;
 }
 
-}  // namespace
-
-PointCloud read_pcd(const std::string& path) {
-  const std::string data = read_all(path);
-  Lines lines(data);
-  std::string line;
+// The header of a PCD file, as declared.
+struct PcdHeader {
   std::vector<std::string> fields, types;
   std::vector<long long> sizes, counts;
   long long width = -1, height = 1, points = -1;
   std::string data_kind;
+  size_t body = 0;  // where the data starts
+};
+
+PcdHeader read_pcd_header(const std::string& path, const std::string& data) {
+  PcdHeader h;
+  Lines lines(data);
+  std::string line;
   bool saw_header_key = false;
   while (lines.next(line)) {
     if (lines.position() > (1 << 20) && !saw_header_key) fail(path, "not a PCD file (no header)");
@@ -83,135 +89,177 @@ PointCloud read_pcd(const std::string& path) {
     if (key == "VERSION") {
       saw_header_key = true;
     } else if (key == "FIELDS") {
-      fields.assign(tok.begin() + 1, tok.end());
+      h.fields.assign(tok.begin() + 1, tok.end());
       saw_header_key = true;
     } else if (key == "SIZE") {
-      ints(sizes);
+      ints(h.sizes);
     } else if (key == "TYPE") {
-      types.assign(tok.begin() + 1, tok.end());
+      h.types.assign(tok.begin() + 1, tok.end());
     } else if (key == "COUNT") {
-      ints(counts);
+      ints(h.counts);
     } else if (key == "WIDTH") {
-      width = one_int();
+      h.width = one_int();
     } else if (key == "HEIGHT") {
-      height = one_int();
+      h.height = one_int();
     } else if (key == "POINTS") {
-      points = one_int();
+      h.points = one_int();
     } else if (key == "VIEWPOINT") {
     } else if (key == "DATA") {
       if (tok.size() != 2) fail(path, "malformed DATA line");
-      data_kind = lower(tok[1]);
+      h.data_kind = lower(tok[1]);
       break;
     } else {
       fail(path, saw_header_key ? "unknown PCD header key '" + key + "'"
                                 : "not a PCD file (unexpected '" + key.substr(0, 20) + "')");
     }
   }
-  if (data_kind.empty()) fail(path, "not a PCD file or truncated header (no DATA line)");
-  if (fields.empty()) fail(path, "PCD header has no FIELDS");
-  if (counts.empty()) counts.assign(fields.size(), 1);
-  if (sizes.size() != fields.size() || types.size() != fields.size() ||
-      counts.size() != fields.size())
+  h.body = lines.position();
+  return h;
+}
+
+// Checks the declared counts and sizes (completing the defaults).
+void check_pcd_header(const std::string& path, PcdHeader& h) {
+  if (h.data_kind.empty()) fail(path, "not a PCD file or truncated header (no DATA line)");
+  if (h.fields.empty()) fail(path, "PCD header has no FIELDS");
+  if (h.counts.empty()) h.counts.assign(h.fields.size(), 1);
+  if (h.sizes.size() != h.fields.size() || h.types.size() != h.fields.size() ||
+      h.counts.size() != h.fields.size())
     fail(path, "PCD header: FIELDS, SIZE, TYPE and COUNT have different lengths");
-  if (width < 0 && points < 0) fail(path, "PCD header has neither WIDTH nor POINTS");
-  if (width < 0) width = points;
-  if (points < 0) points = width * height;
-  if (width < 0 || height < 1 || points < 0 || points > kMaxCount || width > kMaxCount ||
-      height > kMaxCount)
-    fail(path, "PCD header declares an absurd size (WIDTH " + std::to_string(width) + ", HEIGHT " +
-                   std::to_string(height) + ", POINTS " + std::to_string(points) + ")");
-  if (width * height != points)
-    fail(path, "PCD header: WIDTH x HEIGHT = " + std::to_string(width * height) +
-                   " but POINTS = " + std::to_string(points));
+  if (h.width < 0 && h.points < 0) fail(path, "PCD header has neither WIDTH nor POINTS");
+  if (h.width < 0) h.width = h.points;
+  if (h.points < 0) h.points = h.width * h.height;
+  if (h.width < 0 || h.height < 1 || h.points < 0 || h.points > kMaxCount || h.width > kMaxCount ||
+      h.height > kMaxCount)
+    fail(path, "PCD header declares an absurd size (WIDTH " + std::to_string(h.width) +
+                   ", HEIGHT " + std::to_string(h.height) + ", POINTS " + std::to_string(h.points) +
+                   ")");
+  if (h.width * h.height != h.points)
+    fail(path, "PCD header: WIDTH x HEIGHT = " + std::to_string(h.width * h.height) +
+                   " but POINTS = " + std::to_string(h.points));
+}
+
+// Where x, y and z are in a point.
+struct PcdLayout {
   long long point_size = 0, columns = 0;
   int xyz_col[3] = {-1, -1, -1}, xyz_size[3] = {0, 0, 0};
   long long xyz_offset[3] = {0, 0, 0}, xyz_field_offset[3] = {0, 0, 0};
-  for (size_t f = 0; f < fields.size(); ++f) {
-    if (sizes[f] != 1 && sizes[f] != 2 && sizes[f] != 4 && sizes[f] != 8)
-      fail(path, "PCD field '" + fields[f] + "' has size " + std::to_string(sizes[f]));
-    if (counts[f] < 1 || counts[f] > 10000)
-      fail(path, "PCD field '" + fields[f] + "' has count " + std::to_string(counts[f]));
-    if (types[f] != "F" && types[f] != "I" && types[f] != "U")
-      fail(path, "PCD field '" + fields[f] + "' has type '" + types[f] + "'");
+};
+
+PcdLayout pcd_layout(const std::string& path, const PcdHeader& h) {
+  PcdLayout l;
+  for (size_t f = 0; f < h.fields.size(); ++f) {
+    if (h.sizes[f] != 1 && h.sizes[f] != 2 && h.sizes[f] != 4 && h.sizes[f] != 8)
+      fail(path, "PCD field '" + h.fields[f] + "' has size " + std::to_string(h.sizes[f]));
+    if (h.counts[f] < 1 || h.counts[f] > 10000)
+      fail(path, "PCD field '" + h.fields[f] + "' has count " + std::to_string(h.counts[f]));
+    if (h.types[f] != "F" && h.types[f] != "I" && h.types[f] != "U")
+      fail(path, "PCD field '" + h.fields[f] + "' has type '" + h.types[f] + "'");
     for (int a = 0; a < 3; ++a) {
-      if (fields[f] == std::string(1, "xyz"[a])) {
-        if (types[f] != "F" || (sizes[f] != 4 && sizes[f] != 8) || counts[f] != 1)
-          fail(path, "PCD field '" + fields[f] + "' must be one float (F 4 or F 8)");
-        xyz_col[a] = static_cast<int>(columns);
-        xyz_size[a] = static_cast<int>(sizes[f]);
-        xyz_offset[a] = point_size;
-        xyz_field_offset[a] = point_size * points;  // binary_compressed: field-major
+      if (h.fields[f] == std::string(1, "xyz"[a])) {
+        if (h.types[f] != "F" || (h.sizes[f] != 4 && h.sizes[f] != 8) || h.counts[f] != 1)
+          fail(path, "PCD field '" + h.fields[f] + "' must be one float (F 4 or F 8)");
+        l.xyz_col[a] = static_cast<int>(l.columns);
+        l.xyz_size[a] = static_cast<int>(h.sizes[f]);
+        l.xyz_offset[a] = l.point_size;
+        l.xyz_field_offset[a] = l.point_size * h.points;  // binary_compressed: field-major
       }
     }
-    point_size += sizes[f] * counts[f];
-    columns += counts[f];
+    l.point_size += h.sizes[f] * h.counts[f];
+    l.columns += h.counts[f];
   }
   for (int a = 0; a < 3; ++a)
-    if (xyz_col[a] < 0) fail(path, "PCD file has no field '" + std::string(1, "xyz"[a]) + "'");
-  const bool organized = height > 1;
+    if (l.xyz_col[a] < 0) fail(path, "PCD file has no field '" + std::string(1, "xyz"[a]) + "'");
+  return l;
+}
+
+using AddPoint = std::function<void(const Eigen::Vector3d&, long long)>;
+
+void read_pcd_ascii(const std::string& path, const std::string& data, const PcdHeader& h,
+                    const PcdLayout& l, const AddPoint& add) {
+  Lines rows(data, h.body);
+  std::string row;
+  long long i = 0;
+  while (i < h.points && rows.next(row)) {
+    const auto tok = split(row);
+    if (tok.empty()) continue;
+    if (static_cast<long long>(tok.size()) != l.columns)
+      fail(path, "PCD point " + std::to_string(i) + " has " + std::to_string(tok.size()) +
+                     " values, expected " + std::to_string(l.columns));
+    Eigen::Vector3d p;
+    for (int a = 0; a < 3; ++a)
+      if (!parse_double(tok[l.xyz_col[a]], p[a]))
+        fail(path,
+             "PCD point " + std::to_string(i) + ": '" + tok[l.xyz_col[a]] + "' is not a number");
+    add(p, i++);
+  }
+  if (i < h.points)
+    fail(path, "truncated: header declares " + std::to_string(h.points) + " points, found " +
+                   std::to_string(i));
+}
+
+void read_pcd_binary(const std::string& path, const std::string& data, const PcdHeader& h,
+                     const PcdLayout& l, const AddPoint& add) {
+  const long long need = h.points * l.point_size;
+  if (static_cast<long long>(data.size() - h.body) < need)
+    fail(path, "truncated: " + std::to_string(h.points) + " points need " + std::to_string(need) +
+                   " bytes of data, the file has " + std::to_string(data.size() - h.body));
+  const auto* base = reinterpret_cast<const unsigned char*>(data.data() + h.body);
+  for (long long i = 0; i < h.points; ++i) {
+    Eigen::Vector3d p;
+    for (int a = 0; a < 3; ++a)
+      p[a] = read_float(base + i * l.point_size + l.xyz_offset[a], l.xyz_size[a]);
+    add(p, i);
+  }
+}
+
+void read_pcd_compressed(const std::string& path, const std::string& data, const PcdHeader& h,
+                         const PcdLayout& l, const AddPoint& add) {
+  const size_t body = h.body;
+  if (data.size() - body < 8) fail(path, "truncated binary_compressed data");
+  std::uint32_t csize, usize;
+  std::memcpy(&csize, data.data() + body, 4);
+  std::memcpy(&usize, data.data() + body + 4, 4);
+  if (static_cast<long long>(usize) != h.points * l.point_size)
+    fail(path, "binary_compressed: uncompressed size " + std::to_string(usize) +
+                   " != " + std::to_string(h.points * l.point_size));
+  if (csize > data.size() - body - 8)
+    fail(path, "truncated: compressed block of " + std::to_string(csize) + " bytes, the file has " +
+                   std::to_string(data.size() - body - 8));
+  std::vector<unsigned char> raw(usize);
+  if (usize > 0 && !lzf_decompress(reinterpret_cast<const unsigned char*>(data.data() + body + 8),
+                                   csize, raw.data(), usize))
+    fail(path, "binary_compressed data is corrupt");
+  for (long long i = 0; i < h.points; ++i) {
+    Eigen::Vector3d p;
+    for (int a = 0; a < 3; ++a)
+      p[a] = read_float(raw.data() + l.xyz_field_offset[a] + i * l.xyz_size[a], l.xyz_size[a]);
+    add(p, i);
+  }
+}
+
+}  // namespace
+
+PointCloud read_pcd(const std::string& path) {
+  const std::string data = read_all(path);
+  PcdHeader h = read_pcd_header(path, data);
+  check_pcd_header(path, h);
+  const PcdLayout layout = pcd_layout(path, h);
+  const bool organized = h.height > 1;
   PointCloud cloud;
-  cloud.reserve(points);
-  auto add = [&](const Eigen::Vector3d& p, long long i) {
+  cloud.reserve(h.points);
+  const AddPoint add = [&](const Eigen::Vector3d& p, long long i) {
     if (organized && p.hasNaN()) return;  // PCL's "no reading" in organized clouds
     check_point(path, p, i);
     cloud.push_back(p);
   };
-  const size_t body = lines.position();
-  if (data_kind == "ascii") {
-    Lines rows(data, body);
-    std::string row;
-    long long i = 0;
-    while (i < points && rows.next(row)) {
-      const auto tok = split(row);
-      if (tok.empty()) continue;
-      if (static_cast<long long>(tok.size()) != columns)
-        fail(path, "PCD point " + std::to_string(i) + " has " + std::to_string(tok.size()) +
-                       " values, expected " + std::to_string(columns));
-      Eigen::Vector3d p;
-      for (int a = 0; a < 3; ++a)
-        if (!parse_double(tok[xyz_col[a]], p[a]))
-          fail(path,
-               "PCD point " + std::to_string(i) + ": '" + tok[xyz_col[a]] + "' is not a number");
-      add(p, i++);
-    }
-    if (i < points)
-      fail(path, "truncated: header declares " + std::to_string(points) + " points, found " +
-                     std::to_string(i));
-  } else if (data_kind == "binary") {
-    const long long need = points * point_size;
-    if (static_cast<long long>(data.size() - body) < need)
-      fail(path, "truncated: " + std::to_string(points) + " points need " + std::to_string(need) +
-                     " bytes of data, the file has " + std::to_string(data.size() - body));
-    const auto* base = reinterpret_cast<const unsigned char*>(data.data() + body);
-    for (long long i = 0; i < points; ++i) {
-      Eigen::Vector3d p;
-      for (int a = 0; a < 3; ++a)
-        p[a] = read_float(base + i * point_size + xyz_offset[a], xyz_size[a]);
-      add(p, i);
-    }
-  } else if (data_kind == "binary_compressed") {
-    if (data.size() - body < 8) fail(path, "truncated binary_compressed data");
-    std::uint32_t csize, usize;
-    std::memcpy(&csize, data.data() + body, 4);
-    std::memcpy(&usize, data.data() + body + 4, 4);
-    if (static_cast<long long>(usize) != points * point_size)
-      fail(path, "binary_compressed: uncompressed size " + std::to_string(usize) +
-                     " != " + std::to_string(points * point_size));
-    if (csize > data.size() - body - 8)
-      fail(path, "truncated: compressed block of " + std::to_string(csize) +
-                     " bytes, the file has " + std::to_string(data.size() - body - 8));
-    std::vector<unsigned char> raw(usize);
-    if (usize > 0 && !lzf_decompress(reinterpret_cast<const unsigned char*>(data.data() + body + 8),
-                                     csize, raw.data(), usize))
-      fail(path, "binary_compressed data is corrupt");
-    for (long long i = 0; i < points; ++i) {
-      Eigen::Vector3d p;
-      for (int a = 0; a < 3; ++a)
-        p[a] = read_float(raw.data() + xyz_field_offset[a] + i * xyz_size[a], xyz_size[a]);
-      add(p, i);
-    }
+  if (h.data_kind == "ascii") {
+    read_pcd_ascii(path, data, h, layout, add);
+  } else if (h.data_kind == "binary") {
+    read_pcd_binary(path, data, h, layout, add);
+  } else if (h.data_kind == "binary_compressed") {
+    read_pcd_compressed(path, data, h, layout, add);
   } else {
-    fail(path, "unknown PCD DATA kind '" + data_kind + "'");
+    fail(path, "unknown PCD DATA kind '" + h.data_kind + "'");
   }
   if (cloud.empty()) fail(path, "no points");
   return cloud;

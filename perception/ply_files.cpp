@@ -2,6 +2,7 @@
 #include <cstdint>
 #include <cstring>
 #include <map>
+#include <utility>
 
 #include "perception/file_io.hpp"
 #include "perception/file_io_detail.hpp"
@@ -82,16 +83,19 @@ double decode(const unsigned char* p, int size, char kind, bool big_endian) {
   }
 }
 
-}  // namespace
+// The header of a PLY file.
+struct PlyHeader {
+  std::string format;
+  std::vector<PlyElement> elements;
+  size_t body = 0;  // where the data starts
+};
 
-GeometryFile read_ply(const std::string& path) {
-  const std::string data = read_all(path);
+PlyHeader read_ply_header(const std::string& path, const std::string& data) {
   Lines lines(data);
   std::string line;
   if (!lines.next(line) || split(line) != std::vector<std::string>{"ply"})
     fail(path, "not a PLY file (the first line must be 'ply')");
-  std::string format;
-  std::vector<PlyElement> elements;
+  PlyHeader h;
   bool ended = false;
   while (lines.next(line)) {
     const auto tok = split(line);
@@ -103,17 +107,18 @@ GeometryFile read_ply(const std::string& path) {
     }
     if (tok[0] == "format") {
       if (tok.size() != 3) fail(path, "malformed format line");
-      format = tok[1];
-      if (format != "ascii" && format != "binary_little_endian" && format != "binary_big_endian")
-        fail(path, "unknown PLY format '" + format + "'");
+      h.format = tok[1];
+      if (h.format != "ascii" && h.format != "binary_little_endian" &&
+          h.format != "binary_big_endian")
+        fail(path, "unknown PLY format '" + h.format + "'");
     } else if (tok[0] == "element") {
       long long n;
       if (tok.size() != 3 || !parse_integer(tok[2], n)) fail(path, "malformed element line");
       if (n < 0 || n > kMaxCount)
         fail(path, "element '" + tok[1] + "' declares an absurd count " + tok[2]);
-      elements.push_back({tok[1], n, {}});
+      h.elements.push_back({tok[1], n, {}});
     } else if (tok[0] == "property") {
-      if (elements.empty()) fail(path, "property before any element");
+      if (h.elements.empty()) fail(path, "property before any element");
       PlyProperty p;
       if (tok.size() == 5 && tok[1] == "list") {
         p.list = true;
@@ -127,144 +132,181 @@ GeometryFile read_ply(const std::string& path) {
       } else {
         fail(path, "malformed property line '" + line + "'");
       }
-      elements.back().props.push_back(p);
+      h.elements.back().props.push_back(p);
     } else {
       fail(path, "unexpected PLY header line '" + line.substr(0, 40) + "'");
     }
   }
   if (!ended) fail(path, "truncated PLY header (no end_header)");
-  if (format.empty()) fail(path, "PLY header has no format line");
+  if (h.format.empty()) fail(path, "PLY header has no format line");
+  h.body = lines.position();
+  return h;
+}
+
+// The elements and properties that hold the geometry.
+struct PlyGeometry {
   const PlyElement* vertex = nullptr;
   const PlyElement* face = nullptr;
-  for (const auto& e : elements) {
-    if (e.name == "vertex") vertex = &e;
-    if (e.name == "face") face = &e;
+  int ix[3] = {-1, -1, -1};  // x, y, z among the vertex properties
+  int face_prop = -1;        // the vertex index list among the face properties
+};
+
+PlyGeometry find_ply_geometry(const std::string& path, const PlyHeader& h) {
+  PlyGeometry g;
+  for (const auto& e : h.elements) {
+    if (e.name == "vertex") g.vertex = &e;
+    if (e.name == "face") g.face = &e;
   }
-  if (!vertex) fail(path, "PLY file has no vertex element");
-  int ix[3] = {-1, -1, -1};
-  for (size_t i = 0; i < vertex->props.size(); ++i)
+  if (!g.vertex) fail(path, "PLY file has no vertex element");
+  for (size_t i = 0; i < g.vertex->props.size(); ++i)
     for (int a = 0; a < 3; ++a)
-      if (vertex->props[i].name == std::string(1, "xyz"[a]) && !vertex->props[i].list)
-        ix[a] = static_cast<int>(i);
+      if (g.vertex->props[i].name == std::string(1, "xyz"[a]) && !g.vertex->props[i].list)
+        g.ix[a] = static_cast<int>(i);
   for (int a = 0; a < 3; ++a)
-    if (ix[a] < 0)
+    if (g.ix[a] < 0)
       fail(path, "PLY vertex element has no property '" + std::string(1, "xyz"[a]) + "'");
-  int face_prop = -1;
-  if (face) {
-    for (size_t i = 0; i < face->props.size(); ++i)
-      if (face->props[i].list &&
-          (face->props[i].name == "vertex_indices" || face->props[i].name == "vertex_index"))
-        face_prop = static_cast<int>(i);
-    if (face_prop < 0 && face->count > 0) fail(path, "PLY face element has no vertex_indices list");
+  if (g.face) {
+    for (size_t i = 0; i < g.face->props.size(); ++i)
+      if (g.face->props[i].list &&
+          (g.face->props[i].name == "vertex_indices" || g.face->props[i].name == "vertex_index"))
+        g.face_prop = static_cast<int>(i);
+    if (g.face_prop < 0 && g.face->count > 0)
+      fail(path, "PLY face element has no vertex_indices list");
   }
-  const size_t body = lines.position();
-  const bool binary = format != "ascii";
-  // Declared counts against the bytes (binary) or tokens (ascii) actually there.
-  if (binary) {
+  return g;
+}
+
+// Declared counts against the bytes (binary) or tokens (ascii) actually there.
+void check_ply_counts(const std::string& path, const std::string& data, const PlyHeader& h) {
+  if (h.format != "ascii") {
     long long min_bytes = 0;
-    for (const auto& e : elements) {
+    for (const auto& e : h.elements) {
       long long item = 0;
       for (const auto& p : e.props) item += p.list ? p.count_size : p.type;
       min_bytes += e.count * item;
     }
-    if (min_bytes > static_cast<long long>(data.size() - body))
+    if (min_bytes > static_cast<long long>(data.size() - h.body))
       fail(path, "truncated or absurd counts: the header needs at least " +
                      std::to_string(min_bytes) + " bytes of data, the file has " +
-                     std::to_string(data.size() - body));
+                     std::to_string(data.size() - h.body));
   } else {
     long long min_tokens = 0;
-    for (const auto& e : elements) min_tokens += e.count * static_cast<long long>(e.props.size());
-    if (min_tokens > static_cast<long long>(data.size() - body))
+    for (const auto& e : h.elements) min_tokens += e.count * static_cast<long long>(e.props.size());
+    if (min_tokens > static_cast<long long>(data.size() - h.body))
       fail(path,
            "truncated or absurd counts: the header declares more values than the file has "
            "characters");
   }
-  GeometryFile out;
-  PointCloud& pts = out.cloud;
-  pts.reserve(vertex->count);
-  std::vector<std::array<int, 3>> tris;
+}
+
+// What the data holds: the vertices and the faces fanned into triangles.
+struct PlyData {
+  PointCloud points;
+  std::vector<std::array<int, 3>> triangles;
+};
+
+void read_ply_binary(const std::string& path, const std::string& data, const PlyHeader& h,
+                     const PlyGeometry& g, PlyData& out) {
   std::vector<long long> poly;
   std::vector<double> values;
-  if (binary) {
-    const bool be = format == "binary_big_endian";
-    const auto* p = reinterpret_cast<const unsigned char*>(data.data() + body);
-    const auto* end = reinterpret_cast<const unsigned char*>(data.data() + data.size());
-    for (const auto& e : elements) {
-      for (long long i = 0; i < e.count; ++i) {
-        values.clear();
-        for (size_t k = 0; k < e.props.size(); ++k) {
-          const auto& prop = e.props[k];
-          if (!prop.list) {
-            if (end - p < prop.type) fail(path, "truncated data in element '" + e.name + "'");
-            values.push_back(decode(p, prop.type, prop.kind, be));
-            p += prop.type;
-            continue;
-          }
-          if (end - p < prop.count_size) fail(path, "truncated data in element '" + e.name + "'");
-          const double n = decode(p, prop.count_size, prop.count_kind, be);
-          p += prop.count_size;
-          if (n < 0 || n * prop.type > end - p)
-            fail(path, "truncated data or bad list size in element '" + e.name + "'");
-          if (&e == face && static_cast<int>(k) == face_prop) {
-            poly.clear();
-            for (long long j = 0; j < static_cast<long long>(n); ++j)
-              poly.push_back(
-                  static_cast<long long>(decode(p + j * prop.type, prop.type, prop.kind, be)));
-            fan(tris, poly, vertex->count, path, i);
-          }
-          p += static_cast<long long>(n) * prop.type;
-          values.push_back(0.0);
+  const bool be = h.format == "binary_big_endian";
+  const auto* p = reinterpret_cast<const unsigned char*>(data.data() + h.body);
+  const auto* end = reinterpret_cast<const unsigned char*>(data.data() + data.size());
+  for (const auto& e : h.elements) {
+    for (long long i = 0; i < e.count; ++i) {
+      values.clear();
+      for (size_t k = 0; k < e.props.size(); ++k) {
+        const auto& prop = e.props[k];
+        if (!prop.list) {
+          if (end - p < prop.type) fail(path, "truncated data in element '" + e.name + "'");
+          values.push_back(decode(p, prop.type, prop.kind, be));
+          p += prop.type;
+          continue;
         }
-        if (&e == vertex) {
-          const Eigen::Vector3d v(values[ix[0]], values[ix[1]], values[ix[2]]);
-          check_point(path, v, i);
-          pts.push_back(v);
-        }
-      }
-    }
-  } else {
-    Tokens tokens(data, body);
-    std::string tok;
-    auto number = [&](const std::string& element) {
-      double v;
-      if (!tokens.next(tok))
-        fail(path, "truncated: the data ends inside element '" + element + "'");
-      if (!parse_double(tok, v)) fail(path, "'" + tok.substr(0, 20) + "' is not a number");
-      return v;
-    };
-    for (const auto& e : elements) {
-      for (long long i = 0; i < e.count; ++i) {
-        values.clear();
-        for (size_t k = 0; k < e.props.size(); ++k) {
-          const auto& prop = e.props[k];
-          if (!prop.list) {
-            values.push_back(number(e.name));
-            continue;
-          }
-          const double n = number(e.name);
-          if (n < 0 || n > 1e6 || n != std::floor(n))
-            fail(path, "bad list size in '" + e.name + "'");
+        if (end - p < prop.count_size) fail(path, "truncated data in element '" + e.name + "'");
+        const double n = decode(p, prop.count_size, prop.count_kind, be);
+        p += prop.count_size;
+        if (n < 0 || n * prop.type > end - p)
+          fail(path, "truncated data or bad list size in element '" + e.name + "'");
+        if (&e == g.face && static_cast<int>(k) == g.face_prop) {
           poly.clear();
           for (long long j = 0; j < static_cast<long long>(n); ++j)
-            poly.push_back(static_cast<long long>(number(e.name)));
-          if (&e == face && static_cast<int>(k) == face_prop)
-            fan(tris, poly, vertex->count, path, i);
-          values.push_back(0.0);
+            poly.push_back(
+                static_cast<long long>(decode(p + j * prop.type, prop.type, prop.kind, be)));
+          fan(out.triangles, poly, g.vertex->count, path, i);
         }
-        if (&e == vertex) {
-          const Eigen::Vector3d v(values[ix[0]], values[ix[1]], values[ix[2]]);
-          check_point(path, v, i);
-          pts.push_back(v);
-        }
+        p += static_cast<long long>(n) * prop.type;
+        values.push_back(0.0);
+      }
+      if (&e == g.vertex) {
+        const Eigen::Vector3d v(values[g.ix[0]], values[g.ix[1]], values[g.ix[2]]);
+        check_point(path, v, i);
+        out.points.push_back(v);
       }
     }
   }
-  if (pts.empty()) fail(path, "no vertices");
-  if (!tris.empty()) {
+}
+
+void read_ply_ascii(const std::string& path, const std::string& data, const PlyHeader& h,
+                    const PlyGeometry& g, PlyData& out) {
+  std::vector<long long> poly;
+  std::vector<double> values;
+  Tokens tokens(data, h.body);
+  std::string tok;
+  auto number = [&](const std::string& element) {
+    double v;
+    if (!tokens.next(tok)) fail(path, "truncated: the data ends inside element '" + element + "'");
+    if (!parse_double(tok, v)) fail(path, "'" + tok.substr(0, 20) + "' is not a number");
+    return v;
+  };
+  for (const auto& e : h.elements) {
+    for (long long i = 0; i < e.count; ++i) {
+      values.clear();
+      for (size_t k = 0; k < e.props.size(); ++k) {
+        const auto& prop = e.props[k];
+        if (!prop.list) {
+          values.push_back(number(e.name));
+          continue;
+        }
+        const double n = number(e.name);
+        if (n < 0 || n > 1e6 || n != std::floor(n)) fail(path, "bad list size in '" + e.name + "'");
+        poly.clear();
+        for (long long j = 0; j < static_cast<long long>(n); ++j)
+          poly.push_back(static_cast<long long>(number(e.name)));
+        if (&e == g.face && static_cast<int>(k) == g.face_prop)
+          fan(out.triangles, poly, g.vertex->count, path, i);
+        values.push_back(0.0);
+      }
+      if (&e == g.vertex) {
+        const Eigen::Vector3d v(values[g.ix[0]], values[g.ix[1]], values[g.ix[2]]);
+        check_point(path, v, i);
+        out.points.push_back(v);
+      }
+    }
+  }
+}
+
+}  // namespace
+
+GeometryFile read_ply(const std::string& path) {
+  const std::string data = read_all(path);
+  const PlyHeader h = read_ply_header(path, data);
+  const PlyGeometry g = find_ply_geometry(path, h);
+  check_ply_counts(path, data, h);
+  PlyData d;
+  d.points.reserve(g.vertex->count);
+  if (h.format != "ascii")
+    read_ply_binary(path, data, h, g, d);
+  else
+    read_ply_ascii(path, data, h, g, d);
+  if (d.points.empty()) fail(path, "no vertices");
+  GeometryFile out;
+  if (d.triangles.empty()) {
+    out.cloud = std::move(d.points);
+  } else {
     out.is_mesh = true;
-    out.mesh.vertices = std::move(pts);
-    out.mesh.triangles = std::move(tris);
-    out.cloud.clear();
+    out.mesh.vertices = std::move(d.points);
+    out.mesh.triangles = std::move(d.triangles);
   }
   return out;
 }
