@@ -360,9 +360,15 @@ void read_fingers(ModelBuild& b, const YAML::Node& hand) {
       if (qi < 0 || !m.joints[qi].hand) y.error(fj[k], jp, "'" + jn + "' is not a hand joint");
       f.joints.push_back(qi);
     }
+    if (f.joints.empty()) y.error(fj, path + ".joints", "a finger needs at least one joint");
     const YAML::Node fl = y.sequence(y.required(n, "links", path), path + ".links");
-    for (size_t k = 0; k < fl.size(); ++k)
+    bool has_geometry = false;
+    for (size_t k = 0; k < fl.size(); ++k) {
       f.links.push_back(b.link_of(fl[k], path + ".links[" + std::to_string(k) + "]"));
+      has_geometry = has_geometry || !m.links[f.links.back()].shapes.empty();
+    }
+    // Closing a finger stops at contact: without collision geometry it would check nothing.
+    if (!has_geometry) y.error(fl, path + ".links", "no link of the finger has collision geometry");
     m.fingers.push_back(f);
   }
   if (!has_thumb) y.error(fingers, "hand.fingers", "no finger is marked 'thumb: true'");
@@ -398,7 +404,8 @@ void read_curves(ModelBuild& b, const YAML::Node& hand) {
     FingerCurve c;
     c.name = n["name"] ? y.string(n["name"], path + ".name") : "curve_" + std::to_string(i);
     const YAML::Node pts = y.sequence(y.required(n, "points", path), path + ".points");
-    if (pts.size() < 2) y.error(pts, path + ".points", "a finger curve needs at least 2 points");
+    // Closed by its cord, a 2-point curve has no area: its virtual linking is always 0.
+    if (pts.size() < 3) y.error(pts, path + ".points", "a finger curve needs at least 3 points");
     for (size_t k = 0; k < pts.size(); ++k)
       c.points.push_back(read_link_point(b, pts[k], path + ".points[" + std::to_string(k) + "]"));
     b.m.curves.push_back(c);

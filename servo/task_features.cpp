@@ -3,6 +3,7 @@
 #include <array>
 #include <iostream>
 #include <limits>
+#include <stdexcept>
 
 #include <Eigen/Geometry>
 
@@ -69,7 +70,10 @@ void PositionFeature::update(const HandKinematics& hand) {
 }
 
 AlignmentFeature::AlignmentFeature(std::vector<ClaspTarget> targets, double hold_distance)
-    : JointSpaceFeature(2), targets_(std::move(targets)), hold_distance_(hold_distance) {}
+    : JointSpaceFeature(2), targets_(std::move(targets)), hold_distance_(hold_distance) {
+  // update() aligns with the nearest target: there must be one.
+  if (targets_.empty()) throw std::invalid_argument("the alignment feature needs clasp targets");
+}
 
 void AlignmentFeature::update(const HandKinematics& hand, const PositionFeature& position) {
   const Eigen::Vector3d centre = position.position();

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <exception>
 #include <limits>
 #include <random>
 #include <thread>
@@ -312,19 +313,27 @@ SecureClaspReport check_secure_clasp(const robots::RobotModel& model,
   report.sequences = o.sequences;
   std::vector<int> escape_at(o.sequences, -1);
   std::vector<char> escaped(o.sequences, 0), timed_out(o.sequences, 0);
+  // An exception in a worker is carried to this thread (an uncaught one would end the process).
+  std::vector<std::exception_ptr> failures(threads);
   const auto work = [&](int t) {
-    for (int s = t; s < o.sequences; s += threads) {
-      bool late = false;
-      escaped[s] =
-          sequence_escapes(worlds[t], data, curves.points, loop, pivot, o,
-                           o.seed * 1000003ULL + static_cast<std::uint64_t>(s), escape_at[s], late);
-      timed_out[s] = late;
+    try {
+      for (int s = t; s < o.sequences; s += threads) {
+        bool late = false;
+        escaped[s] = sequence_escapes(worlds[t], data, curves.points, loop, pivot, o,
+                                      o.seed * 1000003ULL + static_cast<std::uint64_t>(s),
+                                      escape_at[s], late);
+        timed_out[s] = late;
+      }
+    } catch (...) {
+      failures[t] = std::current_exception();
     }
   };
   std::vector<std::thread> pool;
   for (int t = 1; t < threads; ++t) pool.emplace_back(work, t);
   work(0);
   for (auto& th : pool) th.join();
+  for (const auto& f : failures)
+    if (f) std::rethrow_exception(f);
   for (int s = 0; s < o.sequences; ++s) {
     report.timed_out |= timed_out[s] != 0;
     if (!escaped[s]) continue;

@@ -128,7 +128,7 @@ TEST(RobotCli, BadDescriptionFilesAreExitTwo) {
       {"empty_curve",
        yaml.substr(0, yaml.find("    - name: finger_2-thumb")) +
            "    - name: finger_2-thumb\n      points: []\n" + yaml.substr(yaml.find("  tcp:")),
-       urdf, "hand.curves[1].points: a finger curve needs at least 2 points"},
+       urdf, "hand.curves[1].points: a finger curve needs at least 3 points"},
   };
   for (const Case& c : cases) {
     const std::string folder = c.name + "/";

@@ -248,11 +248,11 @@ TEST(RobotModel, BadFilesGiveOneLineReasons) {
        "'knuckle' is not a hand joint"},
       {"empty curve",
        cut(yaml, "      points:\n", "    - name: finger_2-thumb", "      points: []\n"), urdf,
-       "hand.curves[0].points: a finger curve needs at least 2 points"},
+       "hand.curves[0].points: a finger curve needs at least 3 points"},
       {"one-point curve",
        cut(yaml, "      points:\n", "    - name: finger_2-thumb",
            "      points:\n        - {link: finger_13_tip}\n"),
-       urdf, "at least 2 points"},
+       urdf, "at least 3 points"},
       {"malformed YAML", "name: [unclosed\nurdf: x", urdf, "hand.yaml: malformed YAML: line"},
       {"YAML not a mapping", "- just\n- a list\n", urdf, "hand.yaml: expected a YAML mapping"},
       {"binary YAML", std::string("\x89PNG\r\n\x1a\n\0\0", 10), urdf, "hand.yaml"},
@@ -295,6 +295,27 @@ TEST(RobotModel, EmptyCurveListIsRejected) {
   const std::string yaml = cut(embedded("kr5_sdh.yaml"), "  curves:\n", "  tcp:", "  curves: []\n");
   const std::string reason = load_error(yaml, embedded("kr5_sdh.urdf"));
   EXPECT_NE(reason.find("hand.curves: the list is empty"), std::string::npos) << reason;
+}
+
+TEST(RobotModel, FingersWithoutGeometryOrJointsAndTwoPointCurvesAreRejected) {
+  const std::string urdf = embedded("kr5_sdh.urdf");
+  const std::string yaml = embedded("kr5_sdh.yaml");
+  const std::string finger = "links: [finger_11_link, finger_12_link, finger_13_link]";
+  EXPECT_NE(load_error(replaced(yaml, finger, "links: []"), urdf)
+                .find("hand.fingers[0].links: no link of the finger has collision geometry"),
+            std::string::npos);
+  // sdh_base carries no collision geometry of its own.
+  EXPECT_NE(load_error(replaced(yaml, finger, "links: [tool0]"), urdf).find("collision geometry"),
+            std::string::npos);
+  EXPECT_NE(
+      load_error(replaced(yaml, "joints: [finger_12_joint, finger_13_joint]", "joints: []"), urdf)
+          .find("a finger needs at least one joint"),
+      std::string::npos);
+  // finger_1-thumb from its tip straight to the thumb's tip.
+  const std::string two_points =
+      cut(yaml, "        - {link: finger_13_link}", "        - {link: thumb_3_tip}", "");
+  EXPECT_NE(load_error(two_points, urdf).find("a finger curve needs at least 3 points"),
+            std::string::npos);
 }
 
 TEST(RobotModel, EmbeddedFilesAreListed) {

@@ -137,6 +137,10 @@ TEST(TaskFeatures, AlignmentIsOneOneExactlyWhenAligned) {
   }
 }
 
+TEST(TaskFeatures, AlignmentWithoutTargetsIsRefused) {
+  EXPECT_THROW(servo::AlignmentFeature({}, 0.01), std::invalid_argument);
+}
+
 TEST(TaskFeatures, AlignmentKeepsItsLastDirectionAtTheTarget) {
   const robots::RobotModel& m = robot("kr5_sdh");
   servo::ClaspController probe(
