@@ -178,11 +178,10 @@ void measure_bar(Loop& loop, const PointIndex& index, const std::vector<DepthVie
   loop.bar_thickness = measured.size() >= 3 ? measured[2] : std::numeric_limits<double>::infinity();
 }
 
-void assess(Loop& loop, const PointIndex& index, const std::vector<DepthView>& views,
-            const RankingOptions& options) {
+// `bounds`: the cloud's bounding box (computed once for all loops).
+void assess(Loop& loop, const PointIndex& index, const Eigen::AlignedBox3d& bounds,
+            const std::vector<DepthView>& views, const RankingOptions& options) {
   const PointCloud& cloud = index.points();
-  Eigen::AlignedBox3d bounds;
-  for (const auto& p : cloud) bounds.extend(p);
   auto& pts = loop.points;
   loop.length = closed_length(pts);
   loop.claspable = false;
@@ -393,13 +392,14 @@ void assess(Loop& loop, const PointIndex& index, const std::vector<DepthView>& v
 void assess_loop(Loop& loop, const PointCloud& cloud, const std::vector<DepthView>& views,
                  const RankingOptions& options) {
   const PointIndex index(cloud);
-  assess(loop, index, views, options);
+  assess(loop, index, bounds(cloud), views, options);
 }
 
 void rank_loops(std::vector<Loop>& loops, const PointCloud& cloud,
                 const std::vector<DepthView>& views, const RankingOptions& options) {
   const PointIndex index(cloud);
-  for (auto& l : loops) assess(l, index, views, options);
+  const Eigen::AlignedBox3d box = bounds(cloud);
+  for (auto& l : loops) assess(l, index, box, views, options);
   const bool hand = options.finger_thickness > 0 || options.closed_aperture > 0;
   std::stable_sort(loops.begin(), loops.end(), [hand](const Loop& a, const Loop& b) {
     if (a.claspable != b.claspable) return a.claspable;
