@@ -68,7 +68,7 @@ namespace {
 constexpr double kMinRoom = 0.05;
 
 // Material on every side of an axis at p (direction u): among the points within `radius` of p
-// and `half` of its cross-section plane, no angular gap over 90 degrees.
+// and `half` of its cross-section plane (at least 3), no angular gap over 90 degrees.
 bool surrounded(const PointIndex& index, const Eigen::Vector3d& p, const Eigen::Vector3d& u,
                 double radius, double half) {
   const Eigen::Vector3d u1 = u.unitOrthogonal(), u2 = u.cross(u1);
@@ -81,7 +81,7 @@ bool surrounded(const PointIndex& index, const Eigen::Vector3d& p, const Eigen::
     const double x = v.dot(u1), y = v.dot(u2);
     if (x * x + y * y > 1e-18) angles.push_back(std::atan2(y, x));
   }
-  if (angles.size() < 4) return false;
+  if (angles.size() < 3) return false;
   std::sort(angles.begin(), angles.end());
   double gap = angles.front() + 2 * M_PI - angles.back();
   for (std::size_t k = 1; k < angles.size(); ++k) gap = std::max(gap, angles[k] - angles[k - 1]);
@@ -181,7 +181,6 @@ void measure_bar(Loop& loop, const PointIndex& index, const std::vector<DepthVie
 // `bounds`: the cloud's bounding box (computed once for all loops).
 void assess(Loop& loop, const PointIndex& index, const Eigen::AlignedBox3d& bounds,
             const std::vector<DepthView>& views, const RankingOptions& options) {
-  const PointCloud& cloud = index.points();
   auto& pts = loop.points;
   loop.length = closed_length(pts);
   loop.claspable = false;
@@ -303,22 +302,9 @@ void assess(Loop& loop, const PointIndex& index, const Eigen::AlignedBox3d& boun
   }
   // At each end of the probe, material all around the axis (no angular gap wider than 90 degrees
   // among the points within 1.5 hole radii) means the passage is a tube's inside.
-  const Eigen::Vector3d u1 = e1, u2 = n.cross(e1);
-  std::vector<std::pair<unsigned, double>> near;
   for (double sgn : {1.0, -1.0}) {
-    const Eigen::Vector3d end = loop.centre + sgn * reach * n;
-    index.radius(end, 1.5 * best, near);
-    std::vector<double> angles;
-    for (const auto& [i, d2] : near) {
-      const Eigen::Vector3d v = cloud[i] - end;
-      const double x = v.dot(u1), y = v.dot(u2);
-      if (x * x + y * y > 1e-18) angles.push_back(std::atan2(y, x));
-    }
-    if (angles.size() < 3) continue;
-    std::sort(angles.begin(), angles.end());
-    double gap = angles.front() + 2 * M_PI - angles.back();
-    for (size_t k = 1; k < angles.size(); ++k) gap = std::max(gap, angles[k] - angles[k - 1]);
-    if (gap < M_PI / 2) {
+    if (surrounded(index, loop.centre + sgn * reach * n, n, 1.5 * best,
+                   std::numeric_limits<double>::infinity())) {
       loop.verdict = "tube_wall";
       loop.reason = "loop around a tube wall: material all around the passage " + metres(reach) +
                     " from the hole (the inside of a tube, not a hole)";
