@@ -110,33 +110,50 @@ Eigen::VectorXd close_fingers(const robots::RobotModel& model, robots::Collision
   Eigen::VectorXd q = q_start;
   robots::RobotData data(model);
   const Eigen::VectorXd lower = model.lower(), upper = model.upper();
-  // All fingers close together, one step each per round, so that opposing fingers meet halfway;
-  // a finger stops for good at its first blocked step.
-  std::vector<bool> active(model.fingers.size(), true);
+  const auto blocked_link = [&](const robots::Finger& finger) {
+    for (int link : finger.links) {
+      if (world.link_near_object(data, link, o.clearance) ||
+          world.link_in_collision(data, link, nullptr, /*include_self=*/true))
+        return link;
+    }
+    return -1;
+  };
+  // All fingers close together, one step each per round, so that opposing fingers meet halfway.
+  // A blocked link freezes the joints that move it while the joints beyond it keep closing, so
+  // that a finger stopped at its base by a narrow hole still curls its tip around the bar.
+  std::vector<std::vector<bool>> active;
+  for (const auto& finger : model.fingers) active.emplace_back(finger.joints.size(), true);
   for (int round = 0; round < o.max_steps; ++round) {
     bool any = false;
     for (std::size_t f = 0; f < model.fingers.size(); ++f) {
-      if (!active[f]) continue;
       const robots::Finger& finger = model.fingers[f];
-      Eigen::VectorXd trial = q;
-      for (int j : finger.joints) trial[j] += model.joints[j].closing * o.step;
-      trial = trial.cwiseMax(lower).cwiseMin(upper);
-      bool blocked = trial == q;  // every joint at its limit
-      if (!blocked) {
+      for (;;) {
+        Eigen::VectorXd trial = q;
+        for (std::size_t k = 0; k < finger.joints.size(); ++k) {
+          const int j = finger.joints[k];
+          if (active[f][k]) trial[j] += model.joints[j].closing * o.step;
+        }
+        trial = trial.cwiseMax(lower).cwiseMin(upper);
+        if (trial == q) break;  // no active joint, or all at their limits
         robots::forward_kinematics(model, trial, data);
-        for (int link : finger.links) {
-          if (world.link_near_object(data, link, o.clearance) ||
-              world.link_in_collision(data, link, nullptr, /*include_self=*/true)) {
-            blocked = true;
-            break;
+        const int link = blocked_link(finger);
+        if (link < 0) {
+          q = trial;
+          any = true;
+          break;
+        }
+        // Freeze the joints that move the blocked link; when none is active the finger is done.
+        bool froze = false;
+        for (std::size_t k = 0; k < finger.joints.size(); ++k) {
+          if (!active[f][k]) continue;
+          for (int s : model.links[link].support) {
+            if (model.links[s].q_index == finger.joints[k]) {
+              active[f][k] = false;
+              froze = true;
+            }
           }
         }
-      }
-      if (blocked) {
-        active[f] = false;
-      } else {
-        q = trial;
-        any = true;
+        if (!froze) std::fill(active[f].begin(), active[f].end(), false);
       }
     }
     if (!any) break;
