@@ -33,7 +33,7 @@ Pose perturbed(const tsrrt::ClaspRequest& request, const tsrrt::ClaspResult& r, 
   return p;
 }
 
-std::vector<Pose> saved_poses() {
+std::vector<Pose> plan_poses() {
   std::vector<Pose> poses;
   for (const char* robot : {"kr5_sdh", "kr5_icub", "kr5_armar3"}) {
     const tsrrt::ClaspRequest request = floor_request(purse(), robot, 1);
@@ -48,6 +48,11 @@ std::vector<Pose> saved_poses() {
                                           Eigen::Vector3d(0, 0, 1), Eigen::Vector3d(0, 0, -1)})
         poses.push_back(perturbed(request, r, 0.0, d * axis));
   }
+  return poses;
+}
+
+const std::vector<Pose>& saved_poses() {
+  static const std::vector<Pose> poses = plan_poses();
   return poses;
 }
 
@@ -71,6 +76,28 @@ TEST(SecureClasp, SameVerdictsAsTheReferenceOnSavedPoses) {
   EXPECT_GE(secure + insecure, 50) << touching << " poses touched the object";
   EXPECT_GE(secure, 10);
   EXPECT_GE(insecure, 10);
+}
+
+// Each sequence has its own random stream and the rounds end together: one thread or three give
+// the same report, escapes included.
+TEST(SecureClasp, SameReportForAnyNumberOfThreads) {
+  tsrrt::SecureClaspOptions o;
+  o.sequences = 5;
+  o.motions = 60;
+  int escapes = 0;
+  const auto& poses = saved_poses();
+  for (std::size_t i = 0; i < poses.size(); i += 3) {
+    const Pose& p = poses[i];
+    o.threads = 1;
+    const auto one = tsrrt::check_secure_clasp(*p.robot, p.vertices, p.triangles, p.q, p.loop, o);
+    o.threads = 3;
+    const auto three = tsrrt::check_secure_clasp(*p.robot, p.vertices, p.triangles, p.q, p.loop, o);
+    EXPECT_EQ(one.secure, three.secure) << i;
+    EXPECT_EQ(one.escaped_sequences, three.escaped_sequences) << i;
+    EXPECT_EQ(one.escape_motion, three.escape_motion) << i;
+    escapes += one.escaped_sequences > 0;
+  }
+  EXPECT_GT(escapes, 0);
 }
 
 }  // namespace
