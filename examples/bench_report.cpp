@@ -10,8 +10,9 @@
 #include <sstream>
 #include <stdexcept>
 
-#include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
+
+#include "perception/png_files.hpp"
 
 namespace claspplan::cli {
 namespace {
@@ -54,7 +55,7 @@ void write_text(const std::filesystem::path& path, const std::string& text) {
 }
 
 void write_png(const std::filesystem::path& path, const cv::Mat& image) {
-  if (!cv::imwrite(path.string(), image)) throw std::runtime_error("cannot write " + path.string());
+  perception::write_png(path.string(), image);
 }
 
 const cv::Scalar kGreen(60, 160, 60), kRed(60, 60, 200), kGrey(120, 120, 120), kBlack(0, 0, 0);

@@ -1,8 +1,8 @@
 #include "examples/result_pictures.hpp"
 
 #include <Eigen/Geometry>
-#include <opencv2/imgcodecs.hpp>
 
+#include "perception/png_files.hpp"
 #include "robots/kinematics.hpp"
 
 namespace claspplan::cli {
@@ -132,7 +132,7 @@ void write_path_poses(const SceneGeometry& scene, const std::vector<Eigen::Vecto
   cv::hconcat(panels[0], panels[1], top);
   cv::hconcat(panels[2], panels[3], bottom);
   cv::vconcat(top, bottom, all);
-  if (!cv::imwrite(file, all)) throw std::runtime_error("cannot write " + file);
+  perception::write_png(file, all);
 }
 
 }  // namespace claspplan::cli

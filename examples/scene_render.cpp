@@ -6,8 +6,9 @@
 #include <stdexcept>
 
 #include <Eigen/Geometry>
-#include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
+
+#include "perception/png_files.hpp"
 
 namespace claspplan::cli {
 namespace {
@@ -214,7 +215,7 @@ void SceneImage::draw_label(const std::string& text, int row) {
 }
 
 void SceneImage::save(const std::string& path) const {
-  if (!cv::imwrite(path, image_)) throw std::runtime_error("cannot write " + path);
+  perception::write_png(path, image_);
 }
 
 View framing_view(const std::vector<Eigen::Vector3d>& points, const Eigen::Vector3d& direction,

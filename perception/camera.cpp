@@ -11,8 +11,9 @@
 
 #include <Eigen/SVD>
 #include <opencv2/core.hpp>
-#include <opencv2/imgcodecs.hpp>
 #include <yaml-cpp/yaml.h>
+
+#include "perception/png_files.hpp"
 
 namespace claspplan::perception {
 
@@ -243,22 +244,14 @@ DepthImage read_depth_png(const std::string& path, const CameraModel& camera) {
   if (in.gcount() < 8 || std::memcmp(magic, kPng, 8) != 0)
     throw std::invalid_argument(path + ": not a PNG file");
   check_png_chunks(path);
-  const cv::Mat img = cv::imread(path, cv::IMREAD_UNCHANGED);
-  if (img.empty()) throw std::invalid_argument(path + ": cannot decode the PNG (truncated?)");
-  if (img.type() != CV_16UC1)
-    throw std::invalid_argument(path + ": depth must be a 16-bit single-channel PNG, got " +
-                                std::to_string(img.channels()) + " channel(s) of " +
-                                (img.depth() == CV_8U ? "8" : "other") + " bits");
-  if (img.cols != camera.width || img.rows != camera.height)
-    throw std::invalid_argument(path + ": image is " + std::to_string(img.cols) + "x" +
-                                std::to_string(img.rows) + " but the camera is " +
+  const Gray16Image img = read_png_gray16(path);
+  if (img.width != camera.width || img.height != camera.height)
+    throw std::invalid_argument(path + ": image is " + std::to_string(img.width) + "x" +
+                                std::to_string(img.height) + " but the camera is " +
                                 std::to_string(camera.width) + "x" + std::to_string(camera.height));
-  DepthImage out(img.cols, img.rows);
-  for (int v = 0; v < img.rows; ++v) {
-    const auto* row = img.ptr<std::uint16_t>(v);
-    for (int u = 0; u < img.cols; ++u)
-      out.at(u, v) = static_cast<float>(row[u] * camera.depth_scale);
-  }
+  DepthImage out(img.width, img.height);
+  for (std::size_t i = 0; i < img.pixels.size(); ++i)
+    out.depth[i] = static_cast<float>(img.pixels[i] * camera.depth_scale);
   return out;
 }
 
@@ -266,16 +259,16 @@ void write_depth_png(const DepthImage& image, const CameraModel& camera, const s
   if (image.width <= 0 || image.height <= 0 ||
       image.depth.size() != static_cast<size_t>(image.width) * image.height)
     throw std::invalid_argument("write_depth_png: malformed depth image");
-  cv::Mat img(image.height, image.width, CV_16UC1);
-  for (int v = 0; v < image.height; ++v) {
-    auto* row = img.ptr<std::uint16_t>(v);
-    for (int u = 0; u < image.width; ++u) {
-      const double z = image.at(u, v);
-      const double units = std::isfinite(z) && z > 0 ? std::round(z / camera.depth_scale) : 0.0;
-      row[u] = units >= 1.0 && units <= 65535.0 ? static_cast<std::uint16_t>(units) : 0;
-    }
+  Gray16Image img;
+  img.width = image.width;
+  img.height = image.height;
+  img.pixels.resize(image.depth.size());
+  for (std::size_t i = 0; i < image.depth.size(); ++i) {
+    const double z = image.depth[i];
+    const double units = std::isfinite(z) && z > 0 ? std::round(z / camera.depth_scale) : 0.0;
+    img.pixels[i] = units >= 1.0 && units <= 65535.0 ? static_cast<std::uint16_t>(units) : 0;
   }
-  if (!cv::imwrite(path, img)) throw std::runtime_error(path + ": cannot write the PNG");
+  write_png_gray16(path, img);
 }
 
 std::vector<Eigen::Vector3d> depth_to_points(const DepthView& view) {

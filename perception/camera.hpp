@@ -68,7 +68,7 @@ struct DepthView {
   DepthImage image;
 };
 
-/// Reads a 16-bit PNG (OpenCV) and scales it by the camera's depth_scale. The size must match the
+/// Reads a 16-bit PNG (libpng) and scales it by the camera's depth_scale. The size must match the
 /// camera. Throws std::invalid_argument for missing, non-PNG, truncated, 8-bit or colour files.
 /// An all-zero image is read (it is the pipeline that rejects an empty cloud).
 DepthImage read_depth_png(const std::string& path, const CameraModel& camera);

@@ -7,8 +7,9 @@
 #include <stdexcept>
 
 #include <opencv2/core.hpp>
-#include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
+
+#include "perception/png_files.hpp"
 
 namespace claspplan::perception {
 
@@ -111,7 +112,7 @@ void draw_object_model_png(const ObjectModel& model, const std::string& path, in
                 0.42, i == 0 && l.claspable ? cv::Scalar(0, 0, 200) : cv::Scalar(150, 90, 0), 1,
                 cv::LINE_AA);
   }
-  if (!cv::imwrite(path, img)) throw std::runtime_error(path + ": cannot write the PNG");
+  write_png(path, img);
 }
 
 }  // namespace claspplan::perception

@@ -1,0 +1,72 @@
+#include "perception/png_files.hpp"
+
+#include <cstring>
+#include <stdexcept>
+
+#include <png.h>
+
+namespace claspplan::perception {
+namespace {
+
+// The simplified API's message, or a generic one.
+std::string message(const png_image& image) {
+  return image.message[0] != '\0' ? std::string(image.message) : std::string("libpng error");
+}
+
+}  // namespace
+
+Gray16Image read_png_gray16(const std::string& path) {
+  png_image image;
+  std::memset(&image, 0, sizeof image);
+  image.version = PNG_IMAGE_VERSION;
+  if (!png_image_begin_read_from_file(&image, path.c_str())) {
+    throw std::invalid_argument(path + ": cannot decode the PNG (" + message(image) + ")");
+  }
+  // Only a file that is 16-bit grey already (no colour, no alpha, no palette) is a depth image.
+  if (image.format != PNG_FORMAT_LINEAR_Y) {
+    png_image_free(&image);
+    throw std::invalid_argument(path + ": depth must be a 16-bit single-channel PNG");
+  }
+  Gray16Image out;
+  out.width = static_cast<int>(image.width);
+  out.height = static_cast<int>(image.height);
+  out.pixels.resize(static_cast<std::size_t>(image.width) * image.height);
+  if (!png_image_finish_read(&image, nullptr, out.pixels.data(), 0, nullptr)) {
+    throw std::invalid_argument(path + ": cannot decode the PNG (" + message(image) + ")");
+  }
+  return out;
+}
+
+void write_png_gray16(const std::string& path, const Gray16Image& image) {
+  if (image.width <= 0 || image.height <= 0 ||
+      image.pixels.size() != static_cast<std::size_t>(image.width) * image.height) {
+    throw std::invalid_argument(path + ": malformed 16-bit image");
+  }
+  png_image png;
+  std::memset(&png, 0, sizeof png);
+  png.version = PNG_IMAGE_VERSION;
+  png.width = static_cast<png_uint_32>(image.width);
+  png.height = static_cast<png_uint_32>(image.height);
+  png.format = PNG_FORMAT_LINEAR_Y;
+  if (!png_image_write_to_file(&png, path.c_str(), 0, image.pixels.data(), 0, nullptr)) {
+    throw std::runtime_error(path + ": cannot write the PNG (" + message(png) + ")");
+  }
+}
+
+void write_png(const std::string& path, const cv::Mat& image) {
+  if (image.empty() || (image.type() != CV_8UC3 && image.type() != CV_8UC1)) {
+    throw std::invalid_argument(path + ": only 8-bit BGR or grey pictures are written as PNG");
+  }
+  png_image png;
+  std::memset(&png, 0, sizeof png);
+  png.version = PNG_IMAGE_VERSION;
+  png.width = static_cast<png_uint_32>(image.cols);
+  png.height = static_cast<png_uint_32>(image.rows);
+  png.format = image.channels() == 3 ? PNG_FORMAT_BGR : PNG_FORMAT_GRAY;
+  if (!png_image_write_to_file(&png, path.c_str(), 0, image.data,
+                               static_cast<png_int_32>(image.step[0]), nullptr)) {
+    throw std::runtime_error(path + ": cannot write the PNG (" + message(png) + ")");
+  }
+}
+
+}  // namespace claspplan::perception
