@@ -13,6 +13,19 @@ std::string message(const png_image& image) {
   return image.message[0] != '\0' ? std::string(image.message) : std::string("libpng error");
 }
 
+void write_file(const std::string& path, int width, int height, png_uint_32 format,
+                const void* pixels, png_int_32 row_stride) {
+  png_image png;
+  std::memset(&png, 0, sizeof png);
+  png.version = PNG_IMAGE_VERSION;
+  png.width = static_cast<png_uint_32>(width);
+  png.height = static_cast<png_uint_32>(height);
+  png.format = format;
+  if (!png_image_write_to_file(&png, path.c_str(), 0, pixels, row_stride, nullptr)) {
+    throw std::runtime_error(path + ": cannot write the PNG (" + message(png) + ")");
+  }
+}
+
 }  // namespace
 
 Gray16Image read_png_gray16(const std::string& path) {
@@ -42,31 +55,15 @@ void write_png_gray16(const std::string& path, const Gray16Image& image) {
       image.pixels.size() != static_cast<std::size_t>(image.width) * image.height) {
     throw std::invalid_argument(path + ": malformed 16-bit image");
   }
-  png_image png;
-  std::memset(&png, 0, sizeof png);
-  png.version = PNG_IMAGE_VERSION;
-  png.width = static_cast<png_uint_32>(image.width);
-  png.height = static_cast<png_uint_32>(image.height);
-  png.format = PNG_FORMAT_LINEAR_Y;
-  if (!png_image_write_to_file(&png, path.c_str(), 0, image.pixels.data(), 0, nullptr)) {
-    throw std::runtime_error(path + ": cannot write the PNG (" + message(png) + ")");
-  }
+  write_file(path, image.width, image.height, PNG_FORMAT_LINEAR_Y, image.pixels.data(), 0);
 }
 
 void write_png(const std::string& path, const cv::Mat& image) {
   if (image.empty() || (image.type() != CV_8UC3 && image.type() != CV_8UC1)) {
     throw std::invalid_argument(path + ": only 8-bit BGR or grey pictures are written as PNG");
   }
-  png_image png;
-  std::memset(&png, 0, sizeof png);
-  png.version = PNG_IMAGE_VERSION;
-  png.width = static_cast<png_uint_32>(image.cols);
-  png.height = static_cast<png_uint_32>(image.rows);
-  png.format = image.channels() == 3 ? PNG_FORMAT_BGR : PNG_FORMAT_GRAY;
-  if (!png_image_write_to_file(&png, path.c_str(), 0, image.data,
-                               static_cast<png_int_32>(image.step[0]), nullptr)) {
-    throw std::runtime_error(path + ": cannot write the PNG (" + message(png) + ")");
-  }
+  write_file(path, image.cols, image.rows, image.channels() == 3 ? PNG_FORMAT_BGR : PNG_FORMAT_GRAY,
+             image.data, static_cast<png_int_32>(image.step[0]));
 }
 
 }  // namespace claspplan::perception
