@@ -8,6 +8,7 @@
 
 #include <yaml-cpp/yaml.h>
 
+#include "common/input_error.hpp"
 #include "examples/objects.hpp"
 #include "examples/scene_render.hpp"
 #include "perception/camera.hpp"
@@ -26,7 +27,7 @@ class Reader {
   }
 
   [[noreturn]] void fail(const std::string& key, const std::string& what) const {
-    throw std::invalid_argument(where_ + (key.empty() ? "" : "." + key) + ": " + what);
+    throw InputError(where_ + (key.empty() ? "" : "." + key) + ": " + what);
   }
 
   /// Rejects keys outside `allowed` (catches typos that would silently fall back to defaults).
@@ -268,23 +269,25 @@ void read_object(const Reader& r, const fs::path& dir, ObjectSpec& o) {
 }  // namespace
 
 Scenario load_scenario(const std::string& path) {
-  if (!fs::is_regular_file(path)) throw std::invalid_argument(path + ": no such scenario file");
+  if (!fs::is_regular_file(path)) throw InputError(path + ": no such scenario file");
   std::ifstream in(path);
   std::stringstream text;
   text << in.rdbuf();
   return load_scenario_text(text.str(), path, fs::path(path).parent_path().string());
 }
 
-Scenario load_scenario_text(const std::string& text, const std::string& path,
-                            const std::string& base_dir) {
+namespace {
+
+Scenario parse_scenario(const std::string& text, const std::string& path,
+                        const std::string& base_dir) {
   YAML::Node root;
   try {
     root = YAML::Load(text);
   } catch (const YAML::Exception& e) {
-    throw std::invalid_argument(path + ": malformed YAML: " + e.msg + " (line " +
-                                std::to_string(e.mark.line + 1) + ")");
+    throw InputError(path + ": malformed YAML: " + e.msg + " (line " +
+                     std::to_string(e.mark.line + 1) + ")");
   }
-  if (!root.IsMap()) throw std::invalid_argument(path + ": a scenario is a YAML map");
+  if (!root.IsMap()) throw InputError(path + ": a scenario is a YAML map");
   const Reader r(root, path);
   r.only({"name", "robot", "start", "object", "environment", "clasp", "seed", "perception",
           "controller", "planner"});
@@ -408,7 +411,7 @@ Scenario load_scenario_text(const std::string& text, const std::string& path,
   return s;
 }
 
-perception::PerceptionInputs scenario_inputs(const Scenario& s) {
+perception::PerceptionInputs build_inputs(const Scenario& s) {
   const ObjectSpec& o = s.object;
   perception::PerceptionInputs in;
   if (!o.depth.empty()) {
@@ -420,7 +423,7 @@ perception::PerceptionInputs scenario_inputs(const Scenario& s) {
   perception::TriangleMesh mesh;
   if (!o.mesh.empty()) {
     const perception::PerceptionInputs file = perception::load_inputs({o.mesh}, {});
-    if (file.meshes.empty()) throw std::invalid_argument(o.mesh + ": not a mesh");
+    if (file.meshes.empty()) throw InputError(o.mesh + ": not a mesh");
     mesh = file.meshes.front();
   } else if (o.shape->type == "torus") {
     mesh = objects::torus_mesh(o.shape->major_radius, o.shape->minor_radius);
@@ -458,6 +461,25 @@ perception::PerceptionInputs scenario_inputs(const Scenario& s) {
     in.depth_views.push_back(view);
   }
   return in;
+}
+
+}  // namespace
+
+Scenario load_scenario_text(const std::string& text, const std::string& path,
+                            const std::string& base_dir) {
+  // Whatever check the scenario fails, in the robot's or a file's reader too, is about the input.
+  return as_input_error([&] {
+    try {
+      return parse_scenario(text, path, base_dir);
+    } catch (const YAML::Exception& e) {  // a value of the wrong YAML type
+      throw InputError(path + ": " + e.msg + " (line " + std::to_string(e.mark.line + 1) + ")");
+    }
+  });
+}
+
+perception::PerceptionInputs scenario_inputs(const Scenario& s) {
+  // The inputs are the scenario's own files and shapes.
+  return as_input_error([&] { return build_inputs(s); });
 }
 
 }  // namespace claspplan::cli

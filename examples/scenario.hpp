@@ -11,6 +11,7 @@
 
 #include <Eigen/Geometry>
 
+#include "common/input_error.hpp"
 #include "examples/objects.hpp"
 #include "perception/depth_render.hpp"
 #include "perception/pipeline.hpp"
@@ -63,7 +64,7 @@ struct Scenario {
   tsrrt::ClaspPlanningOptions planning;
 };
 
-/// Reads and validates a scenario. Throws std::invalid_argument with the file and key for missing
+/// Reads and validates a scenario. Throws InputError with the file and key for missing
 /// files, malformed YAML, unknown keys, wrong types and out-of-range values.
 Scenario load_scenario(const std::string& path);
 

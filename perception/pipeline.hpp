@@ -26,6 +26,7 @@
 #include <string>
 #include <vector>
 
+#include "common/input_error.hpp"
 #include "perception/camera.hpp"
 #include "perception/complex.hpp"
 #include "perception/homology.hpp"
@@ -45,7 +46,7 @@ struct PerceptionInputs {
 
 /// Reads inputs by extension: `.png` files pair, in order, with `cameras` (one camera file per
 /// PNG); `.pcd .xyz` are clouds, `.obj .stl .off` meshes, `.ply` either. Throws
-/// std::invalid_argument for a count mismatch or any bad file.
+/// InputError for a count mismatch or any bad file.
 PerceptionInputs load_inputs(const std::vector<std::string>& paths,
                              const std::vector<std::string>& cameras,
                              const std::vector<Eigen::Vector3d>& view_positions = {});
@@ -99,7 +100,7 @@ struct ObjectModel {
   const Loop* best() const { return !loops.empty() && loops[0].claspable ? &loops[0] : nullptr; }
 };
 
-/// Runs the pipeline. Throws std::invalid_argument for invalid inputs: no input, an empty cloud
+/// Runs the pipeline. Throws InputError for invalid inputs: no input, an empty cloud
 /// after filtering (e.g. an all-zero depth image), fewer than 4 distinct points, points that do
 /// not span 3-D, bad options. An object without loops is a valid result (beta1 = 0).
 ObjectModel build_object_model(const PerceptionInputs& inputs, const PerceptionOptions& options);
