@@ -7,6 +7,7 @@
 #include <stdexcept>
 
 #include "common/input_error.hpp"
+#include "common/random_draws.hpp"
 
 namespace claspplan::perception {
 
@@ -97,13 +98,12 @@ DepthImage render_depth(const TriangleMesh& mesh, const CameraModel& camera,
   }
   DepthImage img(W, H);
   std::mt19937_64 rng(noise.seed);
-  std::uniform_real_distribution<double> uni(0.0, 1.0);
-  std::normal_distribution<double> gauss(0.0, 1.0);
   const bool noisy = noise.sigma > 0.0 || noise.dropout > 0.0;
   for (size_t i = 0; i < zbuf.size(); ++i) {
     double z = zbuf[i];
     if (noisy) {
-      const double drop = uni(rng), n = gauss(rng);
+      const double drop = uniform01(rng());
+      const double n = standard_normal(rng);
       if (z < inf) {
         if (drop < noise.dropout)
           z = inf;

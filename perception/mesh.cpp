@@ -7,6 +7,7 @@
 #include <stdexcept>
 
 #include "common/input_error.hpp"
+#include "common/random_draws.hpp"
 
 namespace claspplan::perception {
 
@@ -96,15 +97,15 @@ PointCloud sample_surface(const TriangleMesh& mesh, int count, std::uint64_t see
   }
   if (cumulative.empty()) throw InputError("the mesh has no triangle of positive area to sample");
   std::mt19937_64 rng(seed);
-  std::uniform_real_distribution<double> uni(0.0, 1.0);
   PointCloud out;
   out.reserve(count);
   for (int k = 0; k < count; ++k) {
-    const double r = uni(rng) * total;
+    const double r = uniform01(rng()) * total;
     size_t j = std::upper_bound(cumulative.begin(), cumulative.end(), r) - cumulative.begin();
     j = std::min(j, cumulative.size() - 1);
     const auto& t = mesh.triangles[index[j]];
-    double s = uni(rng), u = uni(rng);
+    double s = uniform01(rng());
+    double u = uniform01(rng());
     if (s + u > 1.0) {  // fold the square onto the triangle: uniform by area
       s = 1.0 - s;
       u = 1.0 - u;
