@@ -268,6 +268,15 @@ void read_object(const Reader& r, const fs::path& dir, ObjectSpec& o) {
 
 }  // namespace
 
+void check_verification_budget(const tsrrt::SecureClaspOptions& check, const std::string& sequences,
+                               const std::string& motions) {
+  if (static_cast<long>(check.sequences) * check.motions > kMaxVerificationMotions) {
+    throw InputError(sequences + " x " + motions + " must be at most " +
+                     std::to_string(kMaxVerificationMotions) + " motions, got " +
+                     std::to_string(check.sequences) + " x " + std::to_string(check.motions));
+  }
+}
+
 Scenario load_scenario(const std::string& path) {
   if (!fs::is_regular_file(path)) throw InputError(path + ": no such scenario file");
   std::ifstream in(path);
@@ -330,7 +339,7 @@ Scenario parse_scenario(const std::string& text, const std::string& path,
   const Reader per = r.child("perception");
   per.only({"points", "d", "d_factor", "min_hole", "seed", "workspace", "remove_plane"});
   auto& po = s.perception;
-  po.points = per.integer("points", po.points, 10, 1000000);
+  po.points = per.integer("points", po.points, 10, perception::kMaxPoints);
   po.d = per.number("d", po.d, 0.0, 10.0);
   po.d_factor = per.number("d_factor", po.d_factor, 0.5, 50.0);
   po.min_hole = per.number("min_hole", po.min_hole, 0.0, 10.0);
@@ -406,6 +415,8 @@ Scenario parse_scenario(const std::string& text, const std::string& path,
   o.closing.clearance = pl.number("closing_clearance", o.closing.clearance, 0.0, 0.1);
   o.secure.sequences = pl.integer("verify_sequences", o.secure.sequences, 1, 1000);
   o.secure.motions = pl.integer("verify_motions", o.secure.motions, 1, 100000);
+  check_verification_budget(o.secure, path + ": planner.verify_sequences",
+                            "planner.verify_motions");
   o.secure.seed = s.seed;
   o.verify_in_search = pl.boolean("verify_in_search", o.verify_in_search);
   return s;

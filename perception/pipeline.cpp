@@ -34,8 +34,9 @@ std::string lower_ext(const std::string& path) {
 }
 
 void validate_options(const PerceptionOptions& o) {
-  if (o.points < 4 || o.points > 10'000'000)
-    throw InputError("--points must be in 4..10000000, got " + std::to_string(o.points));
+  if (o.points < 4 || o.points > kMaxPoints)
+    throw InputError("--points must be in 4.." + std::to_string(kMaxPoints) + ", got " +
+                     std::to_string(o.points));
   if (!(o.d >= 0) || !std::isfinite(o.d))
     throw InputError("--d must be > 0 metres (or 0 for automatic), got " + std::to_string(o.d));
   if (!(o.d_factor > 0) || !std::isfinite(o.d_factor))
