@@ -58,9 +58,14 @@ void add_verify_command(CLI::App& app, Action& action) {
   cmd->add_option("--motions", o->check.motions, "random motions per sequence")
       ->check(CLI::Range(1, 100000))
       ->capture_default_str();
+  cmd->add_option("--near-hand", o->check.near_hand,
+                  "test only the object's triangles within this of the closed hand, and the "
+                  "loop's tube (m; 0: the whole object)")
+      ->check(CLI::Range(0.0, 10.0))
+      ->capture_default_str();
   cmd->add_option("--seed", o->check.seed, "random seed (default: the result's)");
-  cmd->add_option("--threads", o->check.threads, "parallel sequences")
-      ->check(CLI::Range(1, 64))
+  cmd->add_option("--threads", o->check.threads, "parallel sequences (0: all cores)")
+      ->check(CLI::Range(0, 64))
       ->capture_default_str();
   cmd->add_flag("--json", o->json, "print one JSON object instead of the summary");
   cmd->callback([o, cmd, &action] {

@@ -35,6 +35,7 @@ void print_json(const nlohmann::json& object);
 void progress(const std::string& message);
 
 // One function per subcommand, each in its cmd_<name>.cpp.
+void add_bench_command(CLI::App& app, Action& action);
 void add_demo_command(CLI::App& app, Action& action);
 void add_linking_command(CLI::App& app, Action& action);
 void add_robot_command(CLI::App& app, Action& action);

@@ -22,6 +22,7 @@ int main(int argc, char** argv) {
   app.fallthrough(false);
   Action action;
   add_demo_command(app, action);
+  add_bench_command(app, action);
   add_linking_command(app, action);
   add_robot_command(app, action);
   add_loops_command(app, action);

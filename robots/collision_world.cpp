@@ -9,9 +9,12 @@
 #include <fcl/geometry/shape/capsule.h>
 #include <fcl/geometry/shape/cylinder.h>
 #include <fcl/geometry/shape/sphere.h>
+#include <fcl/math/bv/OBB.h>
 #include <fcl/math/bv/OBBRSS.h>
 #include <fcl/narrowphase/collision.h>
 #include <fcl/narrowphase/distance.h>
+
+#include "robots/triangle_tree.hpp"
 
 namespace claspplan::robots {
 namespace {
@@ -130,6 +133,11 @@ struct CollisionWorld::Impl {
   std::vector<std::pair<int, int>> shape_pairs;  // the same as shape pairs
 
   std::shared_ptr<Mesh> object;
+  bool exact_round = false;
+  std::shared_ptr<const TriangleTree> object_tree;  // when exact_round
+  // What collision queries test: `object`, or when exact_round the same mesh in OBBs, whose
+  // bound of a primitive FCL computes in closed form (OBBRSS fits one to its corners each query).
+  Geometry object_collide;
   int object_triangle_count = 0;
   Box3 object_local_box;
   Eigen::Isometry3d object_pose = Eigen::Isometry3d::Identity();
@@ -199,8 +207,15 @@ struct CollisionWorld::Impl {
   bool shape_hits_object(int s) {
     if (!object) return false;
     const Eigen::Isometry3d local = object_pose_inv * tf[s];
-    if (!shapes[s].primitive.bounds(local).overlaps(object_local_box)) return false;
-    return fcl_collide(shapes[s].geometry.get(), tf[s], object.get(), object_pose);
+    const Primitive& p = shapes[s].primitive;
+    if (!p.bounds(local).overlaps(object_local_box)) return false;
+    if (object_tree &&
+        (p.type == CollisionShape::Type::kSphere || p.type == CollisionShape::Type::kCapsule)) {
+      const Eigen::Vector3d axis = local.linear().col(2) * p.half_length;
+      return object_tree->touches_capsule(local.translation() - axis, local.translation() + axis,
+                                          p.radius);
+    }
+    return fcl_collide(shapes[s].geometry.get(), tf[s], object_collide.get(), object_pose);
   }
 
   int shape_hits_environment(int s) {
@@ -297,6 +312,17 @@ void CollisionWorld::set_object(const std::vector<Eigen::Vector3d>& vertices,
   mesh->endModel();
   mesh->computeLocalAABB();
   impl_->object = mesh;
+  impl_->object_collide = mesh;
+  impl_->object_tree.reset();
+  if (impl_->exact_round) {
+    impl_->object_tree = std::make_shared<TriangleTree>(vertices, triangles);
+    auto obb = std::make_shared<fcl::BVHModel<fcl::OBBd>>();
+    obb->beginModel(static_cast<int>(t.size()), n);
+    obb->addSubModel(v, t);
+    obb->endModel();
+    obb->computeLocalAABB();
+    impl_->object_collide = obb;
+  }
   impl_->object_triangle_count = static_cast<int>(t.size());
   impl_->object_local_box = b;
 }
@@ -312,6 +338,8 @@ const Eigen::Isometry3d& CollisionWorld::object_pose() const {
 }
 void CollisionWorld::clear_object() {
   impl_->object.reset();
+  impl_->object_collide.reset();
+  impl_->object_tree.reset();
   impl_->object_triangle_count = 0;
 }
 bool CollisionWorld::has_object() const {
@@ -357,6 +385,13 @@ void CollisionWorld::clear_environment() {
 void CollisionWorld::set_self_collision(bool enabled) {
   impl_->self_enabled = enabled;
   impl_->rebuild_pairs();
+}
+
+void CollisionWorld::set_exact_round_shapes(bool enabled) {
+  if (enabled && impl_->object && !impl_->object_tree)
+    throw std::logic_error("set_exact_round_shapes(true) must come before set_object()");
+  impl_->exact_round = enabled;
+  if (!enabled) impl_->object_tree.reset();
 }
 
 void CollisionWorld::set_hand_self_collision(bool enabled) {
@@ -425,7 +460,7 @@ bool CollisionWorld::link_near_object(const RobotData& data, int link, double cl
     const Primitive p = make_primitive(grown);
     if (!p.bounds(m.object_pose_inv * m.tf[s]).overlaps(m.object_local_box)) continue;
     const Geometry g = make_geometry(grown);
-    if (fcl_collide(g.get(), m.tf[s], m.object.get(), m.object_pose)) return true;
+    if (fcl_collide(g.get(), m.tf[s], m.object_collide.get(), m.object_pose)) return true;
   }
   return false;
 }

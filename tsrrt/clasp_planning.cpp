@@ -2,10 +2,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <exception>
-#include <limits>
-#include <random>
-#include <thread>
 
 #include <Eigen/Geometry>
 
@@ -110,33 +106,50 @@ Eigen::VectorXd close_fingers(const robots::RobotModel& model, robots::Collision
   Eigen::VectorXd q = q_start;
   robots::RobotData data(model);
   const Eigen::VectorXd lower = model.lower(), upper = model.upper();
-  // All fingers close together, one step each per round, so that opposing fingers meet halfway;
-  // a finger stops for good at its first blocked step.
-  std::vector<bool> active(model.fingers.size(), true);
+  const auto blocked_link = [&](const robots::Finger& finger) {
+    for (int link : finger.links) {
+      if (world.link_near_object(data, link, o.clearance) ||
+          world.link_in_collision(data, link, nullptr, /*include_self=*/true))
+        return link;
+    }
+    return -1;
+  };
+  // All fingers close together, one step each per round, so that opposing fingers meet halfway.
+  // A blocked link freezes the joints that move it while the joints beyond it keep closing, so
+  // that a finger stopped at its base by a narrow hole still curls its tip around the bar.
+  std::vector<std::vector<bool>> active;
+  for (const auto& finger : model.fingers) active.emplace_back(finger.joints.size(), true);
   for (int round = 0; round < o.max_steps; ++round) {
     bool any = false;
     for (std::size_t f = 0; f < model.fingers.size(); ++f) {
-      if (!active[f]) continue;
       const robots::Finger& finger = model.fingers[f];
-      Eigen::VectorXd trial = q;
-      for (int j : finger.joints) trial[j] += model.joints[j].closing * o.step;
-      trial = trial.cwiseMax(lower).cwiseMin(upper);
-      bool blocked = trial == q;  // every joint at its limit
-      if (!blocked) {
+      for (;;) {
+        Eigen::VectorXd trial = q;
+        for (std::size_t k = 0; k < finger.joints.size(); ++k) {
+          const int j = finger.joints[k];
+          if (active[f][k]) trial[j] += model.joints[j].closing * o.step;
+        }
+        trial = trial.cwiseMax(lower).cwiseMin(upper);
+        if (trial == q) break;  // no active joint, or all at their limits
         robots::forward_kinematics(model, trial, data);
-        for (int link : finger.links) {
-          if (world.link_near_object(data, link, o.clearance) ||
-              world.link_in_collision(data, link, nullptr, /*include_self=*/true)) {
-            blocked = true;
-            break;
+        const int link = blocked_link(finger);
+        if (link < 0) {
+          q = trial;
+          any = true;
+          break;
+        }
+        // Freeze the joints that move the blocked link; when none is active the finger is done.
+        bool froze = false;
+        for (std::size_t k = 0; k < finger.joints.size(); ++k) {
+          if (!active[f][k]) continue;
+          for (int s : model.links[link].support) {
+            if (model.links[s].q_index == finger.joints[k]) {
+              active[f][k] = false;
+              froze = true;
+            }
           }
         }
-      }
-      if (blocked) {
-        active[f] = false;
-      } else {
-        q = trial;
-        any = true;
+        if (!froze) std::fill(active[f].begin(), active[f].end(), false);
       }
     }
     if (!any) break;
@@ -184,179 +197,6 @@ void loop_tube(const servo::Points& loop, double radius, std::vector<Eigen::Vect
       triangles.emplace_back(a + k, b + k1, b + k);
     }
   }
-}
-
-namespace {
-
-double point_segment_distance(const Eigen::Vector3d& p, const Eigen::Vector3d& a,
-                              const Eigen::Vector3d& b) {
-  const Eigen::Vector3d ab = b - a;
-  const double t = std::clamp((p - a).dot(ab) / std::max(ab.squaredNorm(), 1e-300), 0.0, 1.0);
-  return (a + t * ab - p).norm();
-}
-
-// Smallest distance from the loop's vertices to the finger curves' segments.
-double loop_hand_distance(const servo::Points& loop,
-                          const std::vector<std::vector<Eigen::Vector3d>>& curves) {
-  double best = std::numeric_limits<double>::infinity();
-  for (const auto& curve : curves)
-    for (std::size_t i = 0; i + 1 < curve.size(); ++i)
-      for (const auto& p : loop)
-        best = std::min(best, point_segment_distance(p, curve[i], curve[i + 1]));
-  return best;
-}
-
-// A uniformly distributed unit vector, by rejection from the cube (platform-independent).
-Eigen::Vector3d random_unit(std::mt19937_64& rng) {
-  for (;;) {
-    const Eigen::Vector3d v(2.0 * uniform01(rng()) - 1.0, 2.0 * uniform01(rng()) - 1.0,
-                            2.0 * uniform01(rng()) - 1.0);
-    const double n = v.norm();
-    if (n > 1e-3 && n <= 1.0) return v / n;
-  }
-}
-
-// One sequence of random object motions; true when the object got free. Stops early, setting
-// `timed_out`, once the options' deadline has passed.
-bool sequence_escapes(robots::CollisionWorld& world, const robots::RobotData& data,
-                      const std::vector<std::vector<Eigen::Vector3d>>& curves,
-                      const servo::Points& loop, const Eigen::Vector3d& pivot,
-                      const SecureClaspOptions& o, std::uint64_t seed, int& escape_motion,
-                      bool& timed_out) {
-  std::mt19937_64 rng(seed);
-  const auto escaped = [&](const Eigen::Isometry3d& T) {
-    servo::Points moved(loop.size());
-    for (std::size_t i = 0; i < loop.size(); ++i) moved[i] = T * loop[i];
-    for (const auto& curve : curves) {
-      if (servo::virtual_linking(moved, curve).closed_linking != 0) return false;
-    }
-    return loop_hand_distance(moved, curves) > o.free_distance;
-  };
-  Eigen::Isometry3d T = Eigen::Isometry3d::Identity();  // the object's motion from its start
-  for (int m = 0; m < o.motions; ++m) {
-    if (o.deadline && std::chrono::steady_clock::now() >= *o.deadline) {
-      timed_out = true;
-      return false;
-    }
-    // A random screw: a translation and a rotation about the (moving) pivot, in small steps.
-    const Eigen::Vector3d direction = random_unit(rng);
-    const Eigen::Vector3d axis = random_unit(rng);
-    const double mix = uniform01(rng());
-    for (int k = 0; k < o.steps_per_motion; ++k) {
-      const Eigen::Vector3d centre = T * pivot;
-      Eigen::Isometry3d step = Eigen::Isometry3d::Identity();
-      step.translate(centre + direction * (mix * o.translation_step));
-      step.rotate(Eigen::AngleAxisd((1.0 - mix) * o.rotation_step, axis));
-      step.translate(-centre);
-      const Eigen::Isometry3d trial = step * T;
-      world.set_object_pose(trial);
-      if (world.in_collision(data)) break;  // pursued until collision
-      T = trial;
-    }
-    if (escaped(T)) {
-      escape_motion = m;
-      return true;
-    }
-  }
-  return false;
-}
-
-}  // namespace
-
-SecureClaspReport check_secure_clasp(const robots::RobotModel& model,
-                                     const std::vector<Eigen::Vector3d>& object_vertices,
-                                     const std::vector<Eigen::Vector3i>& object_triangles,
-                                     const Eigen::VectorXd& q, const servo::Points& loop,
-                                     const SecureClaspOptions& o) {
-  SecureClaspReport report;
-  robots::RobotData data(model);
-  robots::FingerCurvesData curves;
-  robots::finger_curves(model, q, data, curves, false);
-
-  // Paper Fig. 6: the Gauss integral of each open finger curve with the loop, and VLk.
-  report.open_linking = open_finger_linking(model, q, loop);
-  for (const auto& curve : curves.points) {
-    report.virtual_linking.push_back(std::abs(servo::virtual_linking(loop, curve).value));
-  }
-  const auto [min_open, max_open] =
-      std::minmax_element(report.open_linking.begin(), report.open_linking.end());
-  const auto [min_v, max_v] =
-      std::minmax_element(report.virtual_linking.begin(), report.virtual_linking.end());
-  report.min_open_linking = *min_open;
-  report.max_open_linking = *max_open;
-  report.min_virtual_linking = *min_v;
-  report.max_virtual_linking = *max_v;
-
-  // The robot and the object only, as in the paper's test; the arm does not move.
-  const int threads = std::max(1, std::min(o.threads, o.sequences));
-  std::vector<robots::CollisionWorld> worlds;
-  for (int t = 0; t < threads; ++t) {
-    worlds.emplace_back(model);
-    worlds.back().set_self_collision(false);
-    worlds.back().set_object(object_vertices, object_triangles);
-  }
-  if (worlds.front().in_collision(data)) {
-    report.start_in_collision = true;
-    return report;
-  }
-
-  // Rotations turn about the loop point nearest the hand: the clasped segment.
-  Eigen::Vector3d pivot = loop.front();
-  double nearest = std::numeric_limits<double>::infinity();
-  for (const auto& p : loop) {
-    const double d = loop_hand_distance({p}, curves.points);
-    if (d < nearest) nearest = d, pivot = p;
-  }
-
-  // Sequence s runs on thread s % threads with its own seed: the outcome is the same for any
-  // number of threads.
-  report.sequences = o.sequences;
-  std::vector<int> escape_at(o.sequences, -1);
-  std::vector<char> escaped(o.sequences, 0), timed_out(o.sequences, 0);
-  // An exception in a worker is carried to this thread (an uncaught one would end the process).
-  std::vector<std::exception_ptr> failures(threads);
-  const auto work = [&](int t) {
-    try {
-      for (int s = t; s < o.sequences; s += threads) {
-        bool late = false;
-        escaped[s] = sequence_escapes(worlds[t], data, curves.points, loop, pivot, o,
-                                      o.seed * 1000003ULL + static_cast<std::uint64_t>(s),
-                                      escape_at[s], late);
-        timed_out[s] = late;
-      }
-    } catch (...) {
-      failures[t] = std::current_exception();
-    }
-  };
-  std::vector<std::thread> pool;
-  for (int t = 1; t < threads; ++t) pool.emplace_back(work, t);
-  work(0);
-  for (auto& th : pool) th.join();
-  for (const auto& f : failures)
-    if (f) std::rethrow_exception(f);
-  for (int s = 0; s < o.sequences; ++s) {
-    report.timed_out |= timed_out[s] != 0;
-    if (!escaped[s]) continue;
-    ++report.escaped_sequences;
-    if (report.escape_motion < 0) report.escape_motion = escape_at[s];
-  }
-  report.secure = report.escaped_sequences == 0 && !report.timed_out;
-  return report;
-}
-
-SecureClaspReport screened_secure_clasp(const robots::RobotModel& model,
-                                        const std::vector<Eigen::Vector3d>& object_vertices,
-                                        const std::vector<Eigen::Vector3i>& object_triangles,
-                                        const Eigen::VectorXd& q, const servo::Points& loop,
-                                        const SecureClaspOptions& options, bool* screened_out) {
-  SecureClaspOptions screen = options;
-  screen.sequences = std::min(screen.sequences, 2);
-  screen.motions = std::min(screen.motions, 100);
-  SecureClaspReport report =
-      check_secure_clasp(model, object_vertices, object_triangles, q, loop, screen);
-  if (screened_out) *screened_out = !report.secure;
-  if (!report.secure) return report;
-  return check_secure_clasp(model, object_vertices, object_triangles, q, loop, options);
 }
 
 }  // namespace claspplan::tsrrt

@@ -7,7 +7,7 @@
 
 #include "examples/objects.hpp"
 #include "perception/depth_render.hpp"
-#include "test/support/floor_scene.hpp"
+#include "test/support/purse_request.hpp"
 
 namespace claspplan::test {
 namespace {
@@ -19,29 +19,9 @@ const std::shared_ptr<const robots::RobotModel>& sdh() {
 }
 
 tsrrt::ClaspRequest request_for(const perception::TriangleMesh& object) {
-  tsrrt::ClaspRequest r;
+  tsrrt::ClaspRequest r = floor_request(object);
   r.robot = sdh();
-  r.start = (Eigen::VectorXd(6) << 0, -1.5707963, 1.5707963, 0, 1.5707963, 0).finished();
-  r.object = seen_on_floor(object);
-  tsrrt::EnvironmentBox floor;
-  floor.pose.translation() = Eigen::Vector3d(0.5, 0, -0.025);
-  floor.size = Eigen::Vector3d(2.0, 2.0, 0.05);
-  r.environment = {floor};
-  r.targets = 9;
-  r.perception.workspace =
-      Eigen::AlignedBox3d(Eigen::Vector3d(0.2, -0.4, 0.01), Eigen::Vector3d(0.95, 0.4, 0.7));
-  r.planning.planner.pre_expansions = 200;
-  r.seed = 1;
-  r.max_cycles = 300;  // bounded by cycles: the same result on any machine
   return r;
-}
-
-perception::TriangleMesh purse() {
-  objects::Purse p;
-  p.body = Eigen::Vector3d(0.30, 0.14, 0.18);
-  p.handle_radius = 0.12;
-  p.handle_tube = 0.012;
-  return objects::purse(p);
 }
 
 class PurseFromDepth : public ::testing::Test {

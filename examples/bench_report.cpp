@@ -1,0 +1,299 @@
+#include "examples/bench_report.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <iomanip>
+#include <limits>
+#include <map>
+#include <sstream>
+#include <stdexcept>
+
+#include <opencv2/imgcodecs.hpp>
+#include <opencv2/imgproc.hpp>
+
+namespace claspplan::cli {
+namespace {
+
+constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+
+double median(std::vector<double> v) {
+  if (v.empty()) return kNaN;
+  std::sort(v.begin(), v.end());
+  const std::size_t n = v.size();
+  return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
+}
+
+// JSON has no NaN: a missing value is null.
+nlohmann::json number(double x) {
+  return std::isfinite(x) ? nlohmann::json(x) : nullptr;
+}
+double number_from(const nlohmann::json& j, const char* key) {
+  const auto& v = j.at(key);
+  return v.is_null() ? kNaN : v.get<double>();
+}
+
+std::string fixed(double x, int digits) {
+  if (!std::isfinite(x)) return "-";
+  std::ostringstream s;
+  s << std::fixed << std::setprecision(digits) << x;
+  return s.str();
+}
+
+std::string csv_text(const std::string& s) {
+  std::string out = "\"";
+  for (char c : s) out += c == '"' ? std::string("\"\"") : std::string(1, c);
+  return out + "\"";
+}
+
+void write_text(const std::filesystem::path& path, const std::string& text) {
+  std::ofstream f(path);
+  f << text;
+  if (!f) throw std::runtime_error("cannot write " + path.string());
+}
+
+void write_png(const std::filesystem::path& path, const cv::Mat& image) {
+  if (!cv::imwrite(path.string(), image)) throw std::runtime_error("cannot write " + path.string());
+}
+
+const cv::Scalar kGreen(60, 160, 60), kRed(60, 60, 200), kGrey(120, 120, 120), kBlack(0, 0, 0);
+
+// Paper Fig. 6: min vs max over the finger curves of the final pose, open-curve |Lk| (circles)
+// and VLk (crosses); verified clasps green, others red.
+cv::Mat linking_scatter(const std::vector<BenchRecord>& records) {
+  const int size = 520, margin = 60, side = size - 2 * margin;
+  // Open-curve |Lk| can pass 1: the axes reach the largest value, in steps of 0.5.
+  double top = 1.0;
+  for (const auto& r : records)
+    for (double v : {r.max_open_linking, r.max_virtual_linking})
+      if (std::isfinite(v)) top = std::max(top, std::ceil(2.0 * v) / 2.0);
+  cv::Mat img(size, size, CV_8UC3, cv::Scalar(255, 255, 255));
+  const auto at = [&](double x, double y) {
+    return cv::Point(margin + static_cast<int>(std::clamp(x / top, 0.0, 1.0) * side),
+                     size - margin - static_cast<int>(std::clamp(y / top, 0.0, 1.0) * side));
+  };
+  cv::rectangle(img, at(0, 0), at(top, top), kBlack);
+  cv::line(img, at(0, 0), at(top, top), kGrey);
+  for (double t = 0.0; t <= top + 1e-9; t += 0.5) {
+    cv::putText(img, fixed(t, 1), at(t, 0) + cv::Point(-10, 20), cv::FONT_HERSHEY_SIMPLEX, 0.4,
+                kBlack);
+    cv::putText(img, fixed(t, 1), at(0, t) + cv::Point(-35, 4), cv::FONT_HERSHEY_SIMPLEX, 0.4,
+                kBlack);
+  }
+  cv::putText(img, "min over fingers", cv::Point(size / 2 - 60, size - 15),
+              cv::FONT_HERSHEY_SIMPLEX, 0.45, kBlack);
+  cv::putText(img, "max over fingers; o open |Lk|, x VLk; green verified", cv::Point(10, 25),
+              cv::FONT_HERSHEY_SIMPLEX, 0.45, kBlack);
+  for (const auto& r : records) {
+    const cv::Scalar colour = r.verified ? kGreen : kRed;
+    if (std::isfinite(r.min_open_linking))
+      cv::circle(img, at(r.min_open_linking, r.max_open_linking), 4, colour, 1, cv::LINE_AA);
+    if (std::isfinite(r.min_virtual_linking))
+      cv::drawMarker(img, at(r.min_virtual_linking, r.max_virtual_linking), colour,
+                     cv::MARKER_CROSS, 8);
+  }
+  return img;
+}
+
+// Seconds per case (planning with the clasp checks), one bar each in the records' order.
+cv::Mat time_per_case(const std::vector<BenchRecord>& records) {
+  const int height = 360, margin = 50;
+  const int bar = std::clamp(900 / std::max<int>(1, static_cast<int>(records.size())), 2, 24);
+  const int width = 2 * margin + bar * static_cast<int>(records.size());
+  cv::Mat img(height, std::max(width, 420), CV_8UC3, cv::Scalar(255, 255, 255));
+  double top = 1e-3;
+  for (const auto& r : records) top = std::max(top, r.seconds);
+  const int base = height - margin, span = height - 2 * margin;
+  cv::line(img, cv::Point(margin, base), cv::Point(img.cols - margin, base), kBlack);
+  for (std::size_t i = 0; i < records.size(); ++i) {
+    const int h = static_cast<int>(records[i].seconds / top * span);
+    const int x = margin + static_cast<int>(i) * bar;
+    cv::rectangle(img, cv::Point(x + 1, base - h), cv::Point(x + bar - 1, base),
+                  records[i].verified ? kGreen : kRed, cv::FILLED);
+  }
+  cv::putText(img, "seconds per case (max " + fixed(top, 2) + " s); green verified",
+              cv::Point(10, 25), cv::FONT_HERSHEY_SIMPLEX, 0.45, kBlack);
+  return img;
+}
+
+std::string report_markdown(const std::vector<BenchRecord>& records, const std::string& title) {
+  struct Row {
+    int cases = 0, success = 0, verified = 0;
+    std::vector<double> seconds, counts;
+    std::map<std::string, int> reasons;
+  };
+  std::map<std::string, Row> rows;
+  for (const auto& r : records) {
+    Row& row = rows[r.name];
+    ++row.cases;
+    row.success += r.success;
+    row.verified += r.verified;
+    if (r.achieved()) {
+      row.seconds.push_back(r.seconds);
+      row.counts.push_back(r.controller_only ? r.steps : r.cycles);
+    } else {
+      // The reason up to its first colon: "no clasp found within the time limit (10 s)".
+      ++row.reasons[r.reason.substr(0, r.reason.find(':'))];
+    }
+  }
+  const nlohmann::json s = bench_summary(records);
+  std::ostringstream md;
+  md << "# " << title << "\n\n"
+     << s["verified"].get<int>() << " of " << s["cases"].get<int>()
+     << " runs planned a verified clasp (" << s["success"].get<int>()
+     << " succeeded: a clasp found, or with --controller-only the goal reached); median "
+     << fixed(number_from(s, "median_seconds"), 2) << " s, max "
+     << fixed(number_from(s, "max_seconds"), 2)
+     << " s (planning with the clasp checks, perception excluded, runs that reached their aim).\n\n"
+     << "| scenario | success | verified | median s | spread s | median cycles (steps with "
+        "--controller-only) | other runs: main reason |\n"
+     << "|---|---|---|---|---|---|---|\n";
+  for (const auto& [name, row] : rows) {
+    std::string spread = "-";
+    if (!row.seconds.empty()) {
+      const auto [lo, hi] = std::minmax_element(row.seconds.begin(), row.seconds.end());
+      spread = fixed(*lo, 2) + "–" + fixed(*hi, 2);
+    }
+    std::string reason = "-";
+    int most = 0;
+    for (const auto& [text, count] : row.reasons)
+      if (count > most) most = count, reason = text + " (" + std::to_string(count) + ")";
+    md << "| " << name << " | " << row.success << "/" << row.cases << " | " << row.verified << "/"
+       << row.cases << " | " << fixed(median(row.seconds), 2) << " | " << spread << " | "
+       << fixed(median(row.counts), 0) << " | " << reason << " |\n";
+  }
+  md << "\nFiles: cases.csv (one row per run), cases.json (read by `claspplan bench --merge`), "
+        "linking_scatter.png (paper Fig. 6), time_per_case.png.\n";
+  return md.str();
+}
+
+}  // namespace
+
+BenchRecord::BenchRecord()
+    : min_open_linking(kNaN),
+      max_open_linking(kNaN),
+      min_virtual_linking(kNaN),
+      max_virtual_linking(kNaN) {}
+
+nlohmann::json record_json(const BenchRecord& r) {
+  return {{"name", r.name},
+          {"scenario", r.scenario},
+          {"seed", r.seed},
+          {"exit_code", r.exit_code},
+          {"success", r.success},
+          {"verified", r.verified},
+          {"controller_only", r.controller_only},
+          {"cycles", r.cycles},
+          {"steps", r.steps},
+          {"nodes", r.nodes},
+          {"seconds", r.seconds},
+          {"perception", r.perception},
+          {"planning", r.planning},
+          {"closing", r.closing},
+          {"verification", r.verification},
+          {"total", r.total},
+          {"min_open_linking", number(r.min_open_linking)},
+          {"max_open_linking", number(r.max_open_linking)},
+          {"min_virtual_linking", number(r.min_virtual_linking)},
+          {"max_virtual_linking", number(r.max_virtual_linking)},
+          {"reason", r.reason}};
+}
+
+BenchRecord record_from_json(const nlohmann::json& j) {
+  BenchRecord r;
+  try {
+    r.name = j.at("name").get<std::string>();
+    r.scenario = j.at("scenario").get<std::string>();
+    r.seed = j.at("seed").get<std::uint64_t>();
+    r.exit_code = j.at("exit_code").get<int>();
+    r.success = j.at("success").get<bool>();
+    r.verified = j.at("verified").get<bool>();
+    r.controller_only = j.at("controller_only").get<bool>();
+    r.cycles = j.at("cycles").get<int>();
+    r.steps = j.at("steps").get<int>();
+    r.nodes = j.at("nodes").get<int>();
+    r.seconds = j.at("seconds").get<double>();
+    r.perception = j.at("perception").get<double>();
+    r.planning = j.at("planning").get<double>();
+    r.closing = j.at("closing").get<double>();
+    r.verification = j.at("verification").get<double>();
+    r.total = j.at("total").get<double>();
+    r.min_open_linking = number_from(j, "min_open_linking");
+    r.max_open_linking = number_from(j, "max_open_linking");
+    r.min_virtual_linking = number_from(j, "min_virtual_linking");
+    r.max_virtual_linking = number_from(j, "max_virtual_linking");
+    r.reason = j.at("reason").get<std::string>();
+  } catch (const nlohmann::json::exception& e) {
+    throw std::invalid_argument(std::string("bench case record: ") + e.what());
+  }
+  return r;
+}
+
+nlohmann::json bench_summary(const std::vector<BenchRecord>& records) {
+  int success = 0, verified = 0;
+  std::vector<double> seconds;
+  for (const auto& r : records) {
+    success += r.success;
+    verified += r.verified;
+    if (r.achieved()) seconds.push_back(r.seconds);
+  }
+  return {{"cases", records.size()},
+          {"success", success},
+          {"verified", verified},
+          {"median_seconds", number(median(seconds))},
+          {"max_seconds",
+           number(seconds.empty() ? kNaN : *std::max_element(seconds.begin(), seconds.end()))}};
+}
+
+void write_bench_report(const std::vector<BenchRecord>& records, const std::string& out_dir,
+                        const std::string& title) {
+  namespace fs = std::filesystem;
+  const fs::path dir(out_dir);
+  fs::create_directories(dir);
+  nlohmann::json all = nlohmann::json::array();
+  std::ostringstream csv;
+  csv << "name,scenario,seed,exit_code,success,verified,controller_only,cycles,steps,nodes,seconds,"
+         "perception,planning,"
+         "closing,verification,total,min_open_linking,max_open_linking,min_virtual_linking,"
+         "max_virtual_linking,reason\n";
+  for (const auto& r : records) {
+    all.push_back(record_json(r));
+    csv << csv_text(r.name) << ',' << csv_text(r.scenario) << ',' << r.seed << ',' << r.exit_code
+        << ',' << r.success << ',' << r.verified << ',' << r.controller_only << ',' << r.cycles
+        << ',' << r.steps << ',' << r.nodes << ',' << fixed(r.seconds, 4) << ','
+        << fixed(r.perception, 4) << ',' << fixed(r.planning, 4) << ',' << fixed(r.closing, 4)
+        << ',' << fixed(r.verification, 4) << ',' << fixed(r.total, 4) << ','
+        << fixed(r.min_open_linking, 4) << ',' << fixed(r.max_open_linking, 4) << ','
+        << fixed(r.min_virtual_linking, 4) << ',' << fixed(r.max_virtual_linking, 4) << ','
+        << csv_text(r.reason) << '\n';
+  }
+  write_text(dir / "cases.json", all.dump(2) + "\n");
+  write_text(dir / "cases.csv", csv.str());
+  write_text(dir / "report.md", report_markdown(records, title));
+  write_png(dir / "linking_scatter.png", linking_scatter(records));
+  write_png(dir / "time_per_case.png", time_per_case(records));
+}
+
+std::vector<BenchRecord> read_bench_cases(const std::string& path) {
+  std::ifstream f(path);
+  if (!f) throw std::invalid_argument(path + ": cannot read (not a bench output folder?)");
+  nlohmann::json j;
+  try {
+    f >> j;
+  } catch (const nlohmann::json::exception& e) {
+    throw std::invalid_argument(path + ": not JSON (" + std::string(e.what()) + ")");
+  }
+  if (!j.is_array()) throw std::invalid_argument(path + ": expected an array of case records");
+  std::vector<BenchRecord> records;
+  for (const auto& item : j) {
+    try {
+      records.push_back(record_from_json(item));
+    } catch (const std::invalid_argument& e) {
+      throw std::invalid_argument(path + ": " + e.what());
+    }
+  }
+  return records;
+}
+
+}  // namespace claspplan::cli

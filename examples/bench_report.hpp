@@ -1,0 +1,53 @@
+// What `claspplan bench` keeps of each run, and the report it writes from them: cases.json (the
+// records, read back by --merge), cases.csv, report.md and PNG plots.
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+namespace claspplan::cli {
+
+/// One run's outcome (from its --json summary, timing.json and result.json).
+struct BenchRecord {
+  std::string name;
+  std::string scenario;
+  std::uint64_t seed = 1;
+  int exit_code = 0;  ///< as `claspplan run` would exit
+  bool success = false;
+  bool verified = false;
+  bool controller_only = false;  ///< the clasp controller alone: success = its goal reached
+  int cycles = 0;                ///< TS-RRT cycles after the pre-expansion
+  int steps = 0;                 ///< control steps of the controller alone
+  int nodes = 0;
+  double seconds = 0;  ///< planning with the clasp checks (perception excluded)
+  double perception = 0, planning = 0, closing = 0, verification = 0, total = 0;  ///< seconds
+  /// Paper Fig. 6: over the finger curves of the final pose, |Lk| of the open curves and VLk
+  /// (NaN when the run has no final pose).
+  double min_open_linking, max_open_linking, min_virtual_linking, max_virtual_linking;
+  std::string reason;
+  BenchRecord();
+  /// What the run was for: a verified clasp, or with the controller alone its goal.
+  bool achieved() const { return controller_only ? success : verified; }
+};
+
+nlohmann::json record_json(const BenchRecord& r);
+/// Throws std::invalid_argument when a field is missing or of the wrong type.
+BenchRecord record_from_json(const nlohmann::json& j);
+
+/// {cases, success, verified, median_seconds, max_seconds} over the records (seconds of the runs
+/// that achieved what they were for: see BenchRecord::achieved()).
+nlohmann::json bench_summary(const std::vector<BenchRecord>& records);
+
+/// Writes cases.json, cases.csv, report.md, time_per_case.png and linking_scatter.png into
+/// out_dir (created if needed). Throws std::runtime_error when a file cannot be written.
+void write_bench_report(const std::vector<BenchRecord>& records, const std::string& out_dir,
+                        const std::string& title);
+
+/// The records of a cases.json written by write_bench_report(). Throws std::invalid_argument for
+/// a missing or malformed file.
+std::vector<BenchRecord> read_bench_cases(const std::string& path);
+
+}  // namespace claspplan::cli

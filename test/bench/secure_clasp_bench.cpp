@@ -1,0 +1,54 @@
+// The secure-clasp check (paper Sec. V-A, 10 sequences x 500 motions) on the purse clasped by the
+// SDH (planned once, seed 1): the reference check of the tests (the whole object mesh, every
+// sequence to its end) against tsrrt::check_secure_clasp, on one core and on all cores.
+#include <memory>
+
+#include <benchmark/benchmark.h>
+
+#include "test/support/purse_request.hpp"
+#include "test/support/reference_secure_clasp.hpp"
+
+namespace claspplan::test {
+namespace {
+
+struct Clasped {
+  tsrrt::ClaspRequest request = floor_request(purse(), "kr5_sdh", 1);
+  tsrrt::ClaspResult result = tsrrt::plan_clasp(request);
+};
+
+const Clasped& clasped_purse() {
+  static const auto clasped = std::make_unique<Clasped>();
+  return *clasped;
+}
+
+template <typename Check>
+void run(benchmark::State& state, Check check) {
+  const tsrrt::ClaspResult& r = clasped_purse().result;
+  if (!r.verified) {
+    state.SkipWithError("the purse was not clasped");
+    return;
+  }
+  tsrrt::SecureClaspOptions o;
+  o.threads = static_cast<int>(state.range(0));
+  bool secure = false;
+  for (auto _ : state) {
+    secure = check(*clasped_purse().request.robot, r.collision_mesh.vertices,
+                   r.collision_mesh.triangles, r.motion.final_q, r.chosen_loop()->points, o)
+                 .secure;
+  }
+  if (!secure) state.SkipWithError("the clasp is not secure");
+}
+
+void BM_SecureClaspReference(benchmark::State& state) {
+  run(state, reference_secure_clasp);
+}
+BENCHMARK(BM_SecureClaspReference)->Arg(1)->Iterations(2)->Unit(benchmark::kMillisecond);
+
+void BM_SecureClasp(benchmark::State& state) {
+  run(state, tsrrt::check_secure_clasp);
+}
+// Threads: 1, and 0 = all cores.
+BENCHMARK(BM_SecureClasp)->Arg(1)->Arg(0)->Iterations(5)->Unit(benchmark::kMillisecond);
+
+}  // namespace
+}  // namespace claspplan::test

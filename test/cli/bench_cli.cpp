@@ -1,0 +1,121 @@
+// `claspplan bench`: suites and shards, the quick suite end to end, merging shard outputs, and
+// its bad-input answers.
+#include <filesystem>
+#include <set>
+
+#include <gtest/gtest.h>
+
+#include "examples/bench_report.hpp"
+#include "examples/bench_suite.hpp"
+#include "test/support/cli_runner.hpp"
+
+namespace claspplan::test {
+namespace {
+
+using nlohmann::json;
+
+TEST(BenchSuite, ShardsPartitionTheCasesInOrder) {
+  TempDir dir;
+  for (const char* name : {"jug_sdh", "jug_icub", "purse_1_dlr", "purse_1_kuka", "other"}) {
+    dir.write(std::string(name) + ".yaml", "name: x\n");
+  }
+  const auto cases = cli::suite_cases("quick", dir.path().string(), 3);
+  ASSERT_EQ(cases.size(), 9u);  // 3 matching files (not purse_1_kuka, not other) x 3 seeds
+  EXPECT_EQ(cases.front().name, "jug_icub");
+  EXPECT_EQ(cases.front().seed, 1u);
+  EXPECT_EQ(cases.back().name, "purse_1_dlr");
+  EXPECT_EQ(cases.back().seed, 3u);
+
+  std::multiset<std::string> seen;
+  for (int k = 1; k <= 4; ++k) {
+    for (const auto& c : cli::shard_cases(cases, std::to_string(k) + "/4"))
+      seen.insert(c.name + "#" + std::to_string(c.seed));
+  }
+  std::multiset<std::string> all;
+  for (const auto& c : cases) all.insert(c.name + "#" + std::to_string(c.seed));
+  EXPECT_EQ(seen, all);  // every case in exactly one shard
+  EXPECT_EQ(cli::shard_cases(cases, "2/4").front().name, cases[1].name);
+
+  EXPECT_THROW(cli::shard_cases(cases, "0/4"), std::invalid_argument);
+  EXPECT_THROW(cli::shard_cases(cases, "5/4"), std::invalid_argument);
+  EXPECT_THROW(cli::shard_cases(cases, "1-4"), std::invalid_argument);
+  EXPECT_EQ(cli::suite_cases("paper", dir.path().string(), 1).size(), 1u);  // purse_1_dlr
+  TempDir empty;
+  EXPECT_THROW(cli::suite_cases("real", empty.path().string(), 1), std::invalid_argument);
+  EXPECT_THROW(cli::suite_cases("nosuch", dir.path().string(), 1), std::invalid_argument);
+}
+
+TEST(BenchReport, RecordsSurviveTheirFileAndMissingValuesStayMissing) {
+  cli::BenchRecord r;
+  r.name = "real/pitcher_sdh";
+  r.scenario = "x.yaml";
+  r.seed = 3;
+  r.exit_code = 1;
+  r.reason = "no claspable loop: \"quoted\", with a comma";
+  const cli::BenchRecord back = cli::record_from_json(cli::record_json(r));
+  EXPECT_EQ(back.name, r.name);
+  EXPECT_EQ(back.seed, 3u);
+  EXPECT_EQ(back.reason, r.reason);
+  EXPECT_TRUE(std::isnan(back.min_open_linking));
+  EXPECT_THROW(cli::record_from_json(json{{"name", "x"}}), std::invalid_argument);
+}
+
+// The quick suite (bounded by cycles, its default) as two shards of a cluster job, two runs at a
+// time, merged into one report.
+TEST(BenchCli, QuickSuiteShardsMergeIntoOneReport) {
+  TempDir dir;
+  int verified = 0;
+  for (const char* k : {"1", "2"}) {
+    const CliResult part =
+        run_cli({"bench", "--suite", "quick", "--shard", std::string(k) + "/2", "--jobs", "2",
+                 "--out", dir.file(std::string("shard") + k), "--json"});
+    ASSERT_EQ(part.exit_code, 0) << part.err;
+    EXPECT_EQ(part.json()["cases"], 4);
+    verified += part.json()["verified"].get<int>();
+  }
+  const CliResult r = run_cli({"bench", "--merge", dir.file("shard1"), dir.file("shard2"), "--out",
+                               dir.file("all"), "--json"});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const json s = r.json();
+  EXPECT_EQ(s["cases"], 8);
+  EXPECT_EQ(s["verified"], verified);
+  EXPECT_GE(verified, 6) << r.out;
+  EXPECT_GT(s["median_seconds"].get<double>(), 0.0);
+  EXPECT_GE(s["max_seconds"].get<double>(), s["median_seconds"].get<double>());
+  for (const char* f :
+       {"report.md", "cases.csv", "cases.json", "linking_scatter.png", "time_per_case.png"}) {
+    EXPECT_TRUE(std::filesystem::exists(dir.file(std::string("all/") + f))) << f;
+  }
+  const auto records = cli::read_bench_cases(dir.file("all/cases.json"));
+  ASSERT_EQ(records.size(), 8u);
+  for (std::size_t i = 0; i < records.size(); ++i) {
+    const auto& rec = records[i];
+    if (i > 0) {
+      EXPECT_LT(records[i - 1].name, rec.name);  // merged in name order
+    }
+    EXPECT_EQ(rec.exit_code, rec.verified ? 0 : 1) << rec.name;
+    if (rec.verified) {
+      EXPECT_GT(rec.min_open_linking, 0.0) << rec.name;
+      EXPECT_LE(rec.min_virtual_linking, rec.max_virtual_linking) << rec.name;
+      EXPECT_GT(rec.verification, 0.0) << rec.name;
+    }
+  }
+}
+
+TEST(BenchCli, BadInputIsExitTwoWithAReason) {
+  TempDir dir;
+  for (const std::vector<std::string>& args :
+       {std::vector<std::string>{"bench"},
+        {"bench", "--suite", "nosuch", "--out", dir.file("a")},
+        {"bench", "--suite", "quick", "--shard", "3/2", "--out", dir.file("b")},
+        {"bench", "--suite", "quick", "--scenarios", dir.file("missing"), "--out", dir.file("c")},
+        {"bench", "--merge", dir.file("missing"), "--out", dir.file("d")},
+        {"bench", "--suite", "quick", "--merge", dir.file("x")}}) {
+    const CliResult r = run_cli(args);
+    EXPECT_EQ(r.exit_code, 2) << args[1] << " " << (args.size() > 2 ? args[2] : "") << r.err;
+    EXPECT_NE(r.err.find("error: "), std::string::npos) << r.err;
+  }
+}
+
+}  // namespace
+}  // namespace claspplan::test

@@ -1,0 +1,347 @@
+// The secure-clasp check (paper Sec. V-A): random motions of the object relative to the closed
+// hand. Faster than a plain loop over sequences in three ways that keep its verdicts:
+// - only the object's triangles near the closed hand are tested, plus the loop's tube whole (less
+//   geometry only makes escaping easier, so a secure verdict stays trustworthy);
+// - sequences advance in rounds of motions and the check stops after the first round in which
+//   one escapes (an insecure clasp is shown by its first escape);
+// - all cores by default; each sequence has its own random stream and rounds end together, so the
+//   report does not depend on the number of threads.
+#include <algorithm>
+#include <atomic>
+#include <cmath>
+#include <exception>
+#include <limits>
+#include <thread>
+#include <unordered_map>
+
+#include "robots/kinematics.hpp"
+#include "tsrrt/clasp_planning.hpp"
+#include "tsrrt/clasp_scene.hpp"
+#include "tsrrt/secure_clasp_detail.hpp"
+
+namespace claspplan::tsrrt {
+namespace detail {
+namespace {
+
+double point_segment_distance(const Eigen::Vector3d& p, const Eigen::Vector3d& a,
+                              const Eigen::Vector3d& b) {
+  const Eigen::Vector3d ab = b - a;
+  const double t = std::clamp((p - a).dot(ab) / std::max(ab.squaredNorm(), 1e-300), 0.0, 1.0);
+  return (a + t * ab - p).norm();
+}
+
+// Smallest distance from the loop's vertices to the finger curves' segments.
+double loop_hand_distance(const servo::Points& loop, const Curves& curves) {
+  double best = std::numeric_limits<double>::infinity();
+  for (const auto& curve : curves)
+    for (std::size_t i = 0; i + 1 < curve.size(); ++i)
+      for (const auto& p : loop)
+        best = std::min(best, point_segment_distance(p, curve[i], curve[i + 1]));
+  return best;
+}
+
+// A uniformly distributed unit vector, by rejection from the cube (platform-independent).
+Eigen::Vector3d random_unit(std::mt19937_64& rng) {
+  for (;;) {
+    const Eigen::Vector3d v(2.0 * uniform01(rng()) - 1.0, 2.0 * uniform01(rng()) - 1.0,
+                            2.0 * uniform01(rng()) - 1.0);
+    const double n = v.norm();
+    if (n > 1e-3 && n <= 1.0) return v / n;
+  }
+}
+
+}  // namespace
+
+ClaspCheckContext clasp_check_context(const robots::RobotModel& model, const Eigen::VectorXd& q,
+                                      const servo::Points& loop, SecureClaspReport& report) {
+  ClaspCheckContext c;
+  robots::RobotData data(model);
+  robots::FingerCurvesData curves;
+  robots::finger_curves(model, q, data, curves, false);
+  c.curves = curves.points;
+  c.loop = loop;
+
+  // Paper Fig. 6: the Gauss integral of each open finger curve with the loop, and VLk.
+  report.open_linking = open_finger_linking(model, q, loop);
+  for (const auto& curve : c.curves) {
+    report.virtual_linking.push_back(std::abs(servo::virtual_linking(loop, curve).value));
+  }
+  const auto [min_open, max_open] =
+      std::minmax_element(report.open_linking.begin(), report.open_linking.end());
+  const auto [min_v, max_v] =
+      std::minmax_element(report.virtual_linking.begin(), report.virtual_linking.end());
+  report.min_open_linking = *min_open;
+  report.max_open_linking = *max_open;
+  report.min_virtual_linking = *min_v;
+  report.max_virtual_linking = *max_v;
+
+  c.pivot = loop.front();
+  double nearest = std::numeric_limits<double>::infinity();
+  for (const auto& p : loop) {
+    const double d = loop_hand_distance({p}, c.curves);
+    if (d < nearest) nearest = d, c.pivot = p;
+  }
+  return c;
+}
+
+std::uint64_t sequence_seed(std::uint64_t seed, int s) {
+  return seed * 1000003ULL + static_cast<std::uint64_t>(s);
+}
+
+bool object_free(const ClaspCheckContext& c, const Eigen::Isometry3d& T, double free_distance) {
+  servo::Points moved(c.loop.size());
+  for (std::size_t i = 0; i < c.loop.size(); ++i) moved[i] = T * c.loop[i];
+  for (const auto& curve : c.curves) {
+    if (servo::virtual_linking(moved, curve).closed_linking != 0) return false;
+  }
+  return loop_hand_distance(moved, c.curves) > free_distance;
+}
+
+bool random_motion(const ClaspCheckContext& c, const SecureClaspOptions& o, std::mt19937_64& rng,
+                   Eigen::Isometry3d& T,
+                   const std::function<bool(const Eigen::Isometry3d&)>& collides) {
+  // A random screw: a translation and a rotation about the (moving) pivot, in small steps.
+  const Eigen::Vector3d direction = random_unit(rng);
+  const Eigen::Vector3d axis = random_unit(rng);
+  const double mix = uniform01(rng());
+  for (int k = 0; k < o.steps_per_motion; ++k) {
+    const Eigen::Vector3d centre = T * c.pivot;
+    Eigen::Isometry3d step = Eigen::Isometry3d::Identity();
+    step.translate(centre + direction * (mix * o.translation_step));
+    step.rotate(Eigen::AngleAxisd((1.0 - mix) * o.rotation_step, axis));
+    step.translate(-centre);
+    const Eigen::Isometry3d trial = step * T;
+    if (collides(trial)) break;  // pursued until collision
+    T = trial;
+  }
+  return object_free(c, T, o.free_distance);
+}
+
+}  // namespace detail
+
+namespace {
+
+// Where the closed hand is: the box around its links' shapes (their bounding spheres), world frame.
+Eigen::AlignedBox3d hand_box(const robots::RobotModel& model, const Eigen::VectorXd& q) {
+  robots::RobotData data(model);
+  robots::forward_kinematics(model, q, data);
+  Eigen::AlignedBox3d box;
+  for (const robots::CollisionShape& s : model.shapes) {
+    if (!model.links[s.link].hand) continue;
+    double r = 0.0;
+    switch (s.type) {
+      case robots::CollisionShape::Type::kBox:
+        r = 0.5 * s.size.norm();
+        break;
+      case robots::CollisionShape::Type::kSphere:
+        r = s.radius;
+        break;
+      case robots::CollisionShape::Type::kCylinder:
+        r = std::hypot(s.radius, 0.5 * s.length);
+        break;
+      case robots::CollisionShape::Type::kCapsule:
+        r = s.radius + 0.5 * s.length;
+        break;
+    }
+    const Eigen::Vector3d c = data.link_poses[s.link] * s.origin.translation();
+    box.extend(c - Eigen::Vector3d::Constant(r));
+    box.extend(c + Eigen::Vector3d::Constant(r));
+  }
+  return box;
+}
+
+// Vertices within the loop's tube radius of a loop point (the tube's rings), by a hash grid.
+std::vector<char> on_loop_tube(const std::vector<Eigen::Vector3d>& vertices,
+                               const servo::Points& loop) {
+  const double r = kLoopTubeRadius * (1.0 + 1e-6) + 1e-9;
+  const auto cell = [r](const Eigen::Vector3d& p) {
+    return Eigen::Vector3i((p / r).array().floor().cast<int>());
+  };
+  const auto key = [](const Eigen::Vector3i& c) {
+    return (static_cast<std::int64_t>(c[0]) * 73856093) ^
+           (static_cast<std::int64_t>(c[1]) * 19349663) ^
+           (static_cast<std::int64_t>(c[2]) * 83492791);
+  };
+  std::unordered_multimap<std::int64_t, int> grid;
+  for (int i = 0; i < static_cast<int>(loop.size()); ++i) grid.emplace(key(cell(loop[i])), i);
+  std::vector<char> near(vertices.size(), 0);
+  for (std::size_t v = 0; v < vertices.size(); ++v) {
+    const Eigen::Vector3i c = cell(vertices[v]);
+    for (int dx = -1; dx <= 1 && !near[v]; ++dx)
+      for (int dy = -1; dy <= 1 && !near[v]; ++dy)
+        for (int dz = -1; dz <= 1 && !near[v]; ++dz) {
+          const auto [lo, hi] = grid.equal_range(key(c + Eigen::Vector3i(dx, dy, dz)));
+          for (auto it = lo; it != hi && !near[v]; ++it)
+            near[v] = (vertices[v] - loop[it->second]).norm() <= r;
+        }
+  }
+  return near;
+}
+
+}  // namespace
+
+void crop_near_hand(const robots::RobotModel& model, const Eigen::VectorXd& q,
+                    const servo::Points& loop, double margin,
+                    const std::vector<Eigen::Vector3d>& vertices,
+                    const std::vector<Eigen::Vector3i>& triangles,
+                    std::vector<Eigen::Vector3d>& kept_vertices,
+                    std::vector<Eigen::Vector3i>& kept_triangles) {
+  kept_vertices.clear();
+  kept_triangles.clear();
+  Eigen::AlignedBox3d region = hand_box(model, q);
+  if (margin <= 0.0 || region.isEmpty()) {
+    kept_vertices = vertices;
+    kept_triangles = triangles;
+    return;
+  }
+  region.min().array() -= margin;
+  region.max().array() += margin;
+  const std::vector<char> tube = on_loop_tube(vertices, loop);
+  std::vector<int> index(vertices.size(), -1);
+  const auto valid = [&](int v) { return v >= 0 && v < static_cast<int>(vertices.size()); };
+  for (const Eigen::Vector3i& t : triangles) {
+    if (!valid(t[0]) || !valid(t[1]) || !valid(t[2])) {
+      kept_triangles.push_back(t);  // left for set_object() to refuse
+      continue;
+    }
+    Eigen::AlignedBox3d box(vertices[t[0]]);
+    box.extend(vertices[t[1]]).extend(vertices[t[2]]);
+    const bool on_tube = tube[t[0]] && tube[t[1]] && tube[t[2]];
+    if (!on_tube && !box.intersects(region)) continue;
+    Eigen::Vector3i kept;
+    for (int k = 0; k < 3; ++k) {
+      int& i = index[t[k]];
+      if (i < 0) {
+        i = static_cast<int>(kept_vertices.size());
+        kept_vertices.push_back(vertices[t[k]]);
+      }
+      kept[k] = i;
+    }
+    kept_triangles.push_back(kept);
+  }
+  if (kept_vertices.empty()) kept_vertices = vertices;  // nothing near: set_object() decides
+}
+
+namespace {
+
+// The motions of one sequence so far.
+struct Sequence {
+  std::mt19937_64 rng;
+  Eigen::Isometry3d T = Eigen::Isometry3d::Identity();  // the object's motion from its start
+  int motions = 0;
+  int escape_motion = -1;
+  bool timed_out = false;
+};
+
+// Sequence s up to `end` motions (or its escape, or the deadline), in `world`.
+void advance(Sequence& s, int end, robots::CollisionWorld& world, const robots::RobotData& data,
+             const detail::ClaspCheckContext& c, const SecureClaspOptions& o) {
+  const auto collides = [&](const Eigen::Isometry3d& T) {
+    world.set_object_pose(T);
+    return world.in_collision(data);
+  };
+  for (; s.motions < end && s.escape_motion < 0; ++s.motions) {
+    if (o.deadline && std::chrono::steady_clock::now() >= *o.deadline) {
+      s.timed_out = true;
+      return;
+    }
+    if (detail::random_motion(c, o, s.rng, s.T, collides)) s.escape_motion = s.motions;
+  }
+}
+
+// Round boundaries (motions done by every sequence): 25, 100, 400, ... then all.
+int round_end(int round, int motions) {
+  long end = 25;
+  for (int r = 0; r < round && end < motions; ++r) end *= 4;
+  return static_cast<int>(std::min<long>(end, motions));
+}
+
+// Runs the check; `rounds_done` (optional) tells how many rounds ran.
+SecureClaspReport run_check(const robots::RobotModel& model,
+                            const std::vector<Eigen::Vector3d>& object_vertices,
+                            const std::vector<Eigen::Vector3i>& object_triangles,
+                            const Eigen::VectorXd& q, const servo::Points& loop,
+                            const SecureClaspOptions& o, int* rounds_done) {
+  SecureClaspReport report;
+  const detail::ClaspCheckContext c = detail::clasp_check_context(model, q, loop, report);
+  robots::RobotData data(model);
+  robots::forward_kinematics(model, q, data);
+
+  std::vector<Eigen::Vector3d> vertices;
+  std::vector<Eigen::Vector3i> triangles;
+  crop_near_hand(model, q, loop, o.near_hand, object_vertices, object_triangles, vertices,
+                 triangles);
+  const int cores = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
+  const int threads = std::max(1, std::min(o.threads > 0 ? o.threads : cores, o.sequences));
+  // The robot and the object only, as in the paper's test; the arm does not move.
+  std::vector<robots::CollisionWorld> worlds;
+  for (int t = 0; t < threads; ++t) {
+    worlds.emplace_back(model);
+    worlds.back().set_self_collision(false);
+    worlds.back().set_exact_round_shapes(o.exact_round_shapes);
+    worlds.back().set_object(vertices, triangles);
+  }
+  if (worlds.front().in_collision(data)) {
+    report.start_in_collision = true;
+    return report;
+  }
+
+  report.sequences = o.sequences;
+  std::vector<Sequence> sequences(o.sequences);
+  for (int s = 0; s < o.sequences; ++s) sequences[s].rng.seed(detail::sequence_seed(o.seed, s));
+  bool stop = false;
+  for (int round = 0; !stop; ++round) {
+    const int end = round_end(round, o.motions);
+    // Threads take sequences in any order; each sequence's result is its own.
+    std::atomic<int> next{0};
+    std::vector<std::exception_ptr> failures(threads);
+    const auto work = [&](int t) {
+      try {
+        for (int s = next++; s < o.sequences; s = next++)
+          advance(sequences[s], end, worlds[t], data, c, o);
+      } catch (...) {
+        failures[t] = std::current_exception();
+      }
+    };
+    std::vector<std::thread> pool;
+    for (int t = 1; t < threads; ++t) pool.emplace_back(work, t);
+    work(0);
+    for (auto& th : pool) th.join();
+    for (const auto& f : failures)
+      if (f) std::rethrow_exception(f);
+    if (rounds_done) *rounds_done = round + 1;
+    for (const Sequence& s : sequences) {
+      report.timed_out |= s.timed_out;
+      if (s.escape_motion < 0) continue;
+      ++report.escaped_sequences;
+      if (report.escape_motion < 0) report.escape_motion = s.escape_motion;
+    }
+    stop = end >= o.motions || report.escaped_sequences > 0 || report.timed_out;
+  }
+  report.secure = report.escaped_sequences == 0 && !report.timed_out;
+  return report;
+}
+
+}  // namespace
+
+SecureClaspReport check_secure_clasp(const robots::RobotModel& model,
+                                     const std::vector<Eigen::Vector3d>& object_vertices,
+                                     const std::vector<Eigen::Vector3i>& object_triangles,
+                                     const Eigen::VectorXd& q, const servo::Points& loop,
+                                     const SecureClaspOptions& options) {
+  return run_check(model, object_vertices, object_triangles, q, loop, options, nullptr);
+}
+
+SecureClaspReport screened_secure_clasp(const robots::RobotModel& model,
+                                        const std::vector<Eigen::Vector3d>& object_vertices,
+                                        const std::vector<Eigen::Vector3i>& object_triangles,
+                                        const Eigen::VectorXd& q, const servo::Points& loop,
+                                        const SecureClaspOptions& options, bool* screened_out) {
+  int rounds = 0;
+  SecureClaspReport report =
+      run_check(model, object_vertices, object_triangles, q, loop, options, &rounds);
+  if (screened_out) *screened_out = !report.secure && rounds <= 2;
+  return report;
+}
+
+}  // namespace claspplan::tsrrt
