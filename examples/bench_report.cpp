@@ -12,6 +12,7 @@
 
 #include <opencv2/imgproc.hpp>
 
+#include "perception/input_error.hpp"
 #include "perception/png_files.hpp"
 
 namespace claspplan::cli {
@@ -226,7 +227,7 @@ BenchRecord record_from_json(const nlohmann::json& j) {
     r.max_virtual_linking = number_from(j, "max_virtual_linking");
     r.reason = j.at("reason").get<std::string>();
   } catch (const nlohmann::json::exception& e) {
-    throw std::invalid_argument(std::string("bench case record: ") + e.what());
+    throw InputError(std::string("bench case record: ") + e.what());
   }
   return r;
 }
@@ -278,20 +279,20 @@ void write_bench_report(const std::vector<BenchRecord>& records, const std::stri
 
 std::vector<BenchRecord> read_bench_cases(const std::string& path) {
   std::ifstream f(path);
-  if (!f) throw std::invalid_argument(path + ": cannot read (not a bench output folder?)");
+  if (!f) throw InputError(path + ": cannot read (not a bench output folder?)");
   nlohmann::json j;
   try {
     f >> j;
   } catch (const nlohmann::json::exception& e) {
-    throw std::invalid_argument(path + ": not JSON (" + std::string(e.what()) + ")");
+    throw InputError(path + ": not JSON (" + std::string(e.what()) + ")");
   }
-  if (!j.is_array()) throw std::invalid_argument(path + ": expected an array of case records");
+  if (!j.is_array()) throw InputError(path + ": expected an array of case records");
   std::vector<BenchRecord> records;
   for (const auto& item : j) {
     try {
       records.push_back(record_from_json(item));
     } catch (const std::invalid_argument& e) {
-      throw std::invalid_argument(path + ": " + e.what());
+      throw InputError(path + ": " + e.what());
     }
   }
   return records;

@@ -5,6 +5,8 @@
 #include <regex>
 #include <stdexcept>
 
+#include "perception/input_error.hpp"
+
 namespace claspplan::cli {
 namespace {
 
@@ -33,7 +35,7 @@ std::vector<std::string> bench_suites() {
 
 std::vector<BenchCase> suite_cases(const std::string& suite, const std::string& scenarios_dir,
                                    int seeds) {
-  if (seeds < 1) throw std::invalid_argument("--seeds must be >= 1");
+  if (seeds < 1) throw InputError("--seeds must be >= 1");
   const fs::path dir(scenarios_dir);
   const std::string hand = "(sdh|dlr|icub|armar3)";
   std::vector<std::pair<std::string, std::string>> files;
@@ -46,11 +48,11 @@ std::vector<BenchCase> suite_cases(const std::string& suite, const std::string& 
     const auto chair = matching(dir, std::regex("chair_obstructed_" + hand), "");
     files.insert(files.end(), chair.begin(), chair.end());
   } else {
-    throw std::invalid_argument("unknown suite '" + suite + "' (quick, real or paper)");
+    throw InputError("unknown suite '" + suite + "' (quick, real or paper)");
   }
   if (files.empty()) {
-    throw std::invalid_argument("suite " + suite + ": no scenario files in " + scenarios_dir +
-                                " (give the folder with --scenarios)");
+    throw InputError("suite " + suite + ": no scenario files in " + scenarios_dir +
+                     " (give the folder with --scenarios)");
   }
   std::sort(files.begin(), files.end());
   std::vector<BenchCase> cases;
@@ -61,12 +63,11 @@ std::vector<BenchCase> suite_cases(const std::string& suite, const std::string& 
 }
 
 std::vector<BenchCase> file_cases(const std::vector<std::string>& files, int seeds) {
-  if (seeds < 1) throw std::invalid_argument("--seeds must be >= 1");
+  if (seeds < 1) throw InputError("--seeds must be >= 1");
   std::vector<BenchCase> cases;
   for (const auto& file : files) {
     std::error_code ec;
-    if (!fs::is_regular_file(file, ec))
-      throw std::invalid_argument(file + ": no such scenario file");
+    if (!fs::is_regular_file(file, ec)) throw InputError(file + ": no such scenario file");
     for (int s = 1; s <= seeds; ++s)
       cases.push_back({fs::path(file).stem().string(), file, static_cast<std::uint64_t>(s)});
   }
@@ -76,11 +77,11 @@ std::vector<BenchCase> file_cases(const std::vector<std::string>& files, int see
 std::vector<BenchCase> shard_cases(const std::vector<BenchCase>& cases, const std::string& shard) {
   std::smatch m;
   if (!std::regex_match(shard, m, std::regex("([0-9]{1,6})/([0-9]{1,6})"))) {
-    throw std::invalid_argument("--shard must be K/N, e.g. 2/8 (got '" + shard + "')");
+    throw InputError("--shard must be K/N, e.g. 2/8 (got '" + shard + "')");
   }
   const int k = std::stoi(m[1]), n = std::stoi(m[2]);
   if (n < 1 || k < 1 || k > n) {
-    throw std::invalid_argument("--shard K/N needs 1 <= K <= N (got '" + shard + "')");
+    throw InputError("--shard K/N needs 1 <= K <= N (got '" + shard + "')");
   }
   std::vector<BenchCase> out;
   for (std::size_t i = static_cast<std::size_t>(k - 1); i < cases.size(); i += n) {

@@ -15,6 +15,7 @@
 #include "examples/bench_suite.hpp"
 #include "examples/command.hpp"
 #include "examples/run_scenario.hpp"
+#include "perception/input_error.hpp"
 
 namespace claspplan::cli {
 namespace {
@@ -70,7 +71,7 @@ BenchRecord run_case(const BenchCase& c, const BenchOptions& o, const fs::path& 
     const RunOutcome outcome = run_scenario(load_scenario(c.scenario), run);
     r.exit_code = outcome.exit_code;
     summary = outcome.summary;
-  } catch (const std::invalid_argument& e) {
+  } catch (const InputError& e) {
     r.exit_code = kBadInput;
     r.reason = e.what();
     return r;

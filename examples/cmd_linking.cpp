@@ -6,6 +6,7 @@
 
 #include "examples/command.hpp"
 #include "examples/curve_file.hpp"
+#include "perception/input_error.hpp"
 #include "servo/linking.hpp"
 
 namespace claspplan::cli {
@@ -77,7 +78,15 @@ void add_linking_command(CLI::App& app, Action& action) {
       "B is an open finger curve: report VLk(A, B), Lk with B closed by its cord, and the "
       "Gauss integral with the open B");
   cmd->add_flag("--json", o->json, "print one JSON object instead of the summary");
-  cmd->callback([o, &action] { action = [o] { return run_linking(*o); }; });
+  cmd->callback([o, &action] {
+    action = [o] {
+      try {
+        return run_linking(*o);
+      } catch (const servo::CurvesIntersect& e) {
+        throw InputError(e.what());  // the user's own curves touch: their input is bad
+      }
+    };
+  });
 }
 
 }  // namespace claspplan::cli

@@ -11,6 +11,7 @@
 #include "examples/command.hpp"
 #include "examples/objects.hpp"
 #include "perception/drawing.hpp"
+#include "perception/input_error.hpp"
 #include "perception/pipeline.hpp"
 #include "robots/hand_size.hpp"
 
@@ -37,12 +38,12 @@ std::vector<double> numbers(const std::string& text, size_t count, const std::st
     char* end = nullptr;
     const double x = std::strtod(item.c_str(), &end);
     if (item.empty() || end != item.c_str() + item.size() || !std::isfinite(x))
-      throw std::invalid_argument(what + " '" + text + "': '" + item + "' is not a finite number");
+      throw InputError(what + " '" + text + "': '" + item + "' is not a finite number");
     v.push_back(x);
   }
   if (v.size() != count)
-    throw std::invalid_argument(what + " '" + text + "' must have " + std::to_string(count) +
-                                " comma-separated numbers");
+    throw InputError(what + " '" + text + "' must have " + std::to_string(count) +
+                     " comma-separated numbers");
   return v;
 }
 
@@ -69,13 +70,13 @@ int run_loops(const LoopsOptions& o) {
   po.d = o.d;
   po.min_hole = o.min_hole;
   po.targets = o.targets;
-  if (o.seed < 0) throw std::invalid_argument("--seed must be >= 0");
+  if (o.seed < 0) throw InputError("--seed must be >= 0");
   po.seed = static_cast<std::uint64_t>(o.seed);
   po.remove_plane = !o.keep_plane;
   if (!o.crop.empty()) {
     const auto c = numbers(o.crop, 6, "--crop");
     if (!(c[0] < c[3] && c[1] < c[4] && c[2] < c[5]))
-      throw std::invalid_argument("--crop needs XMIN < XMAX, YMIN < YMAX, ZMIN < ZMAX");
+      throw InputError("--crop needs XMIN < XMAX, YMIN < YMAX, ZMIN < ZMAX");
     po.workspace =
         Eigen::AlignedBox3d(Eigen::Vector3d(c[0], c[1], c[2]), Eigen::Vector3d(c[3], c[4], c[5]));
   }
@@ -233,7 +234,7 @@ void add_loops_command(CLI::App& app, Action& action) {
       perception::DepthNoise noise;
       noise.sigma = r->sigma;
       noise.seed = static_cast<std::uint64_t>(std::max(0LL, r->seed));
-      if (!(r->sigma >= 0)) throw std::invalid_argument("--noise must be >= 0");
+      if (!(r->sigma >= 0)) throw InputError("--noise must be >= 0");
       const auto files = objects::write_purse_depth_example(r->dir, r->cameras, noise);
       nlohmann::json out = nlohmann::json::array();
       for (const auto& [png, yaml] : files) {

@@ -7,6 +7,7 @@
 #include <sstream>
 
 #include "examples/command.hpp"
+#include "perception/input_error.hpp"
 #include "robots/collision_world.hpp"
 #include "robots/kinematics.hpp"
 #include "robots/robot_model.hpp"
@@ -32,21 +33,18 @@ std::vector<double> parse_q(const std::string& text) {
     const size_t a = token.find_first_not_of(" \t");
     const size_t b = token.find_last_not_of(" \t");
     token = a == std::string::npos ? "" : token.substr(a, b - a + 1);
-    if (token.empty())
-      throw std::invalid_argument("--q: value " + std::to_string(index) + " is empty");
+    if (token.empty()) throw InputError("--q: value " + std::to_string(index) + " is empty");
     char* end = nullptr;
     errno = 0;
     const double v = std::strtod(token.c_str(), &end);
     if (end != token.c_str() + token.size() || errno == ERANGE)
-      throw std::invalid_argument("--q: value " + std::to_string(index) + " '" + token +
-                                  "' is not a number");
+      throw InputError("--q: value " + std::to_string(index) + " '" + token + "' is not a number");
     if (!std::isfinite(v))
-      throw std::invalid_argument("--q: value " + std::to_string(index) + " '" + token +
-                                  "' is not finite");
+      throw InputError("--q: value " + std::to_string(index) + " '" + token + "' is not finite");
     values.push_back(v);
   }
   if (values.empty() || (!text.empty() && text.back() == ','))
-    throw std::invalid_argument("--q: expected comma-separated joint values, got '" + text + "'");
+    throw InputError("--q: expected comma-separated joint values, got '" + text + "'");
   return values;
 }
 

@@ -19,6 +19,7 @@ struct VerifyOptions {
 };
 
 int run_verify(VerifyOptions o) {
+  check_verification_budget(o.check, "--sequences", "--motions");
   const ResultFile r = read_result_file(o.result);
   if (!o.seed_given && r.seed) o.check.seed = *r.seed;
 

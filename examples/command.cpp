@@ -1,6 +1,9 @@
 #include "examples/command.hpp"
 
+#include <exception>
 #include <iostream>
+
+#include "perception/input_error.hpp"
 
 namespace claspplan::cli {
 
@@ -10,6 +13,29 @@ void print_json(const nlohmann::json& object) {
 
 void progress(const std::string& message) {
   std::cerr << message << std::endl;
+}
+
+// One line on stderr and, with --json, one object on stdout, so scripts always get JSON.
+int report_failure(int code, const std::string& reason, bool json) {
+  std::string line = reason;
+  for (char& c : line)
+    if (c == '\n' || c == '\r') c = ' ';
+  std::cerr << "claspplan: error: " << line << "\n";
+  if (json) print_json({{"error", line}, {"exit_code", code}});
+  return code;
+}
+
+int run_action(const Action& action, bool json) {
+  try {
+    return action ? action() : kOk;
+  } catch (const InputError& e) {
+    return report_failure(kBadInput, e.what(), json);
+  } catch (const std::exception& e) {
+    // Not the user's fault: a broken internal precondition (std::invalid_argument too) or a bug.
+    return report_failure(kInternalError, std::string("internal error: ") + e.what(), json);
+  } catch (...) {
+    return report_failure(kInternalError, "internal error: an unknown exception", json);
+  }
 }
 
 }  // namespace claspplan::cli

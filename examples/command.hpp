@@ -2,8 +2,9 @@
 //
 // Exit codes: 0 success, 1 a valid problem without an answer (no claspable loop, no clasp found,
 // not secure), 2 malformed input or usage (a one-line reason on stderr), 3 internal error.
-// Malformed input is signalled by throwing std::invalid_argument anywhere below a command; main()
-// turns it into exit 2. With --json a command prints exactly one JSON object on stdout.
+// Malformed input is signalled by throwing claspplan::InputError (perception/input_error.hpp)
+// anywhere below a command; any other exception, std::invalid_argument included, is an internal
+// error. With --json a command prints exactly one JSON object on stdout.
 #pragma once
 
 #include <functional>
@@ -18,6 +19,14 @@ enum ExitCode : int { kOk = 0, kNoAnswer = 1, kBadInput = 2, kInternalError = 3 
 
 /// The selected command's action; set by the subcommand's parse callback, run by main().
 using Action = std::function<int()>;
+
+/// Runs a command's action and maps what it throws to an exit code: InputError -> kBadInput,
+/// anything else -> kInternalError ("internal error: ..."), each with one line on stderr (and with
+/// `json` one object {error, exit_code} on stdout).
+int run_action(const Action& action, bool json);
+
+/// The one-line failure report of run_action() and of usage errors; returns `code`.
+int report_failure(int code, const std::string& reason, bool json);
 
 /// Prints one JSON object on stdout (stable key order, full double precision).
 void print_json(const nlohmann::json& object);

@@ -5,11 +5,12 @@
 
 #include <string>
 
+#include "perception/input_error.hpp"
 #include "servo/linking.hpp"
 
 namespace claspplan::cli {
 
-/// Reads and validates a curve file (servo::validate_curve). Throws std::invalid_argument with the
+/// Reads and validates a curve file (servo::validate_curve). Throws InputError with the
 /// file name and line for missing files, malformed lines, NaN/Inf, too few points or zero-length
 /// segments.
 servo::Points read_curve_file(const std::string& path, bool closed);

@@ -13,16 +13,6 @@ bool wants_json(int argc, char** argv) {
   return false;
 }
 
-// One line on stderr and, with --json, one object on stdout, so scripts always get JSON.
-int fail(int code, const std::string& reason, bool json) {
-  std::string line = reason;
-  for (char& c : line)
-    if (c == '\n') c = ' ';
-  std::cerr << "claspplan: error: " << line << "\n";
-  if (json) claspplan::cli::print_json({{"error", line}, {"exit_code", code}});
-  return code;
-}
-
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -48,14 +38,8 @@ int main(int argc, char** argv) {
     return app.exit(e);
   } catch (const CLI::ParseError& e) {
     // CLI11 would exit with 100-127; usage errors are exit 2 here.
-    return fail(kBadInput, std::string(e.what()) + " (see --help)", json);
+    return report_failure(kBadInput, std::string(e.what()) + " (see --help)", json);
   }
 
-  try {
-    return action ? action() : kOk;
-  } catch (const std::invalid_argument& e) {
-    return fail(kBadInput, e.what(), json);
-  } catch (const std::exception& e) {
-    return fail(kInternalError, std::string("internal error: ") + e.what(), json);
-  }
+  return run_action(action, json);
 }

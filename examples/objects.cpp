@@ -6,6 +6,8 @@
 #include <stdexcept>
 #include <unordered_map>
 
+#include "perception/input_error.hpp"
+
 namespace claspplan::objects {
 
 namespace {
@@ -27,7 +29,7 @@ void orient(TriangleMesh& m, Outward outward) {
 
 TriangleMesh sphere_mesh(double radius, const Eigen::Vector3d& centre, int slices, int stacks) {
   if (!(radius > 0) || slices < 3 || stacks < 2)
-    throw std::invalid_argument("sphere_mesh: radius > 0, slices >= 3, stacks >= 2");
+    throw InputError("sphere_mesh: radius > 0, slices >= 3, stacks >= 2");
   TriangleMesh m;
   m.vertices.push_back(centre + Eigen::Vector3d(0, 0, radius));
   for (int i = 1; i < stacks; ++i) {
@@ -56,7 +58,7 @@ TriangleMesh sphere_mesh(double radius, const Eigen::Vector3d& centre, int slice
 
 TriangleMesh torus_mesh(double R, double r, const Eigen::Isometry3d& pose, int major, int minor) {
   if (!(r > 0) || !(R > r) || major < 3 || minor < 3)
-    throw std::invalid_argument("torus_mesh: need R > r > 0, major >= 3, minor >= 3");
+    throw InputError("torus_mesh: need R > r > 0, major >= 3, minor >= 3");
   TriangleMesh m;
   for (int i = 0; i < major; ++i) {
     const double u = 2 * kPi * i / major;
@@ -84,14 +86,14 @@ TriangleMesh torus_mesh(double R, double r, const Eigen::Isometry3d& pose, int m
 
 TriangleMesh mesh_from_sdf(const Sdf& f, const Eigen::AlignedBox3d& box, double cell) {
   if (box.isEmpty() || !(cell > 0) || !box.min().allFinite() || !box.max().allFinite())
-    throw std::invalid_argument("mesh_from_sdf: need a non-empty box and a cell > 0");
+    throw InputError("mesh_from_sdf: need a non-empty box and a cell > 0");
   const Eigen::Vector3d size = box.sizes();
   const long nx = std::max(1L, std::lround(std::ceil(size.x() / cell)));
   const long ny = std::max(1L, std::lround(std::ceil(size.y() / cell)));
   const long nz = std::max(1L, std::lround(std::ceil(size.z() / cell)));
   const long sx = nx + 1, sy = ny + 1, sz = nz + 1;
   if (static_cast<double>(sx) * sy * sz > 2e8)
-    throw std::invalid_argument("mesh_from_sdf: grid too fine (more than 2e8 nodes)");
+    throw InputError("mesh_from_sdf: grid too fine (more than 2e8 nodes)");
   auto node_pos = [&](long i, long j, long k) {
     return Eigen::Vector3d(box.min().x() + i * cell, box.min().y() + j * cell,
                            box.min().z() + k * cell);
@@ -169,7 +171,7 @@ TriangleMesh mesh_from_sdf(const Sdf& f, const Eigen::AlignedBox3d& box, double 
           }
         }
       }
-  if (m.triangles.empty()) throw std::invalid_argument("mesh_from_sdf: no surface inside the box");
+  if (m.triangles.empty()) throw InputError("mesh_from_sdf: no surface inside the box");
   return m;
 }
 
@@ -248,7 +250,7 @@ Sdf moved(Sdf f, const Eigen::Isometry3d& pose) {
 TriangleMesh holed_plate(const HoledPlate& p) {
   if (p.holes < 0 || !(p.hole_radius > 0) || !(p.thickness > 2 * p.rounding) || !(p.margin > 0) ||
       !(p.cell > 0))
-    throw std::invalid_argument("holed_plate: bad parameters");
+    throw InputError("holed_plate: bad parameters");
   const double length = p.holes > 0 ? p.holes * 2 * p.hole_radius + (p.holes + 1) * p.margin
                                     : 2 * p.hole_radius + 2 * p.margin;
   const double width = 2 * p.hole_radius + 2 * p.margin;
@@ -279,7 +281,7 @@ TriangleMesh purse(const Purse& p) {
   if (!(p.body.minCoeff() > 0) || !(p.handle_tube > 0) || !(p.handle_radius > p.handle_tube) ||
       p.handle_radius + p.handle_tube >= std::min(p.body.x() / 2, p.body.z()) ||
       p.handle_tube >= p.body.y() / 2 || !(p.cell > 0))
-    throw std::invalid_argument("purse: the handle must fit on the body (bad parameters)");
+    throw InputError("purse: the handle must fit on the body (bad parameters)");
   const Sdf body = sdf::box({0, 0, p.body.z() / 2}, p.body / 2, p.body_rounding);
   const Sdf handle = sdf::torus(handle_pose(p), p.handle_radius, p.handle_tube);
   const Sdf solid = sdf::smooth_unite(body, handle, 0.5 * p.handle_tube);
@@ -299,7 +301,7 @@ TriangleMesh container(const Container& c) {
   if (!(c.radius > 2 * c.wall) || !(c.height > 2 * c.wall) || !(c.wall > 0) || !(c.cell > 0) ||
       (c.handle_radius > 0 && !(c.handle_radius > c.handle_tube && c.handle_tube > 0)) ||
       (c.handle_radius > 0 && c.handle_radius + c.handle_tube >= c.height / 2))
-    throw std::invalid_argument("container: bad parameters");
+    throw InputError("container: bad parameters");
   const Eigen::Vector3d up(0, 0, 1);
   Sdf solid =
       sdf::subtract(sdf::cylinder(Eigen::Vector3d::Zero(), c.height * up, c.radius),
@@ -350,7 +352,7 @@ perception::CameraModel kinect_camera(const Eigen::Vector3d& position,
 }
 
 std::vector<perception::CameraModel> purse_cameras(int count) {
-  if (count < 1 || count > 2) throw std::invalid_argument("purse_cameras: 1 or 2 cameras");
+  if (count < 1 || count > 2) throw InputError("purse_cameras: 1 or 2 cameras");
   const Eigen::Vector3d target(0, 0, 0.16);
   std::vector<perception::CameraModel> cams{kinect_camera({0.25, -0.75, 0.65}, target)};
   if (count == 2) cams.push_back(kinect_camera({-0.35, 0.70, 0.70}, target));

@@ -20,6 +20,7 @@
 
 #include "perception/camera.hpp"
 #include "perception/depth_render.hpp"
+#include "perception/input_error.hpp"
 #include "perception/mesh.hpp"
 
 namespace claspplan::objects {
@@ -41,7 +42,7 @@ TriangleMesh torus_mesh(double R, double r,
 
 /// The zero level set of `f` inside `box`, by marching tetrahedra (6 Kuhn tetrahedra per cube)
 /// on a grid of spacing `cell`; triangles face outwards (towards positive f). The solid must not
-/// touch the box. Throws std::invalid_argument for a bad box/cell or more than 2e8 grid nodes.
+/// touch the box. Throws InputError for a bad box/cell or more than 2e8 grid nodes.
 TriangleMesh mesh_from_sdf(const Sdf& f, const Eigen::AlignedBox3d& box, double cell);
 
 namespace sdf {

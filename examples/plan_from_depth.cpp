@@ -69,7 +69,7 @@ int main(int argc, char** argv) try {
     std::printf(")\n");
   }
   return result.status == tsrrt::ClaspStatus::kSuccess ? 0 : 1;
-} catch (const std::exception& e) {  // std::invalid_argument: bad input
+} catch (const std::exception& e) {  // InputError: bad input
   std::fprintf(stderr, "error: %s\n", e.what());
   return 2;
 }

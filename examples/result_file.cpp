@@ -6,6 +6,8 @@
 
 #include <nlohmann/json.hpp>
 
+#include "perception/input_error.hpp"
+
 namespace claspplan::cli {
 namespace {
 
@@ -14,13 +16,13 @@ class ResultReader {
  public:
   explicit ResultReader(const std::string& path) : path_(path) {
     std::ifstream in(path);
-    if (!in) throw std::invalid_argument(path + ": cannot open result file");
+    if (!in) throw InputError(path + ": cannot open result file");
     try {
       j_ = nlohmann::json::parse(in);
     } catch (const nlohmann::json::exception& e) {
-      throw std::invalid_argument(path + ": not valid JSON (" + std::string(e.what()) + ")");
+      throw InputError(path + ": not valid JSON (" + std::string(e.what()) + ")");
     }
-    if (!j_.is_object()) throw std::invalid_argument(path + ": expected a JSON object");
+    if (!j_.is_object()) throw InputError(path + ": expected a JSON object");
   }
 
   const nlohmann::json& at(const std::string& key) const {
@@ -29,7 +31,7 @@ class ResultReader {
   }
 
   [[noreturn]] void fail(const std::string& key, const std::string& what) const {
-    throw std::invalid_argument(path_ + ": " + key + ": " + what);
+    throw InputError(path_ + ": " + key + ": " + what);
   }
 
   double number(const nlohmann::json& v, const std::string& key) const {
@@ -80,8 +82,13 @@ void read_object_mesh(const ResultReader& r, ResultFile& out) {
         !t[2].is_number_integer()) {
       r.fail("object_mesh.triangles", "expected [i, j, k] vertex indices");
     }
-    out.object_triangles.emplace_back(t[0].get<int>(), t[1].get<int>(), t[2].get<int>());
+    const Eigen::Vector3i triangle(t[0].get<int>(), t[1].get<int>(), t[2].get<int>());
+    if (triangle.minCoeff() < 0 ||
+        triangle.maxCoeff() >= static_cast<int>(out.object_vertices.size()))
+      r.fail("object_mesh.triangles", "a vertex index is out of range");
+    out.object_triangles.push_back(triangle);
   }
+  if (out.object_triangles.empty()) r.fail("object_mesh.triangles", "no triangle");
 }
 
 void read_path(const ResultReader& r, ResultFile& out) {
@@ -115,7 +122,7 @@ ResultFile read_result_file(const std::string& path, bool with_path) {
   out.model = robots::load_robot(out.robot);
   out.final_q = r.configuration(r.at("final_q"), out.model, "final_q");
   out.loop = r.points(r.at("loop"), "loop");
-  servo::validate_curve(out.loop, true, path + ": loop");
+  as_input_error([&] { servo::validate_curve(out.loop, true, path + ": loop"); });
   read_object_mesh(r, out);
   if (r.json().contains("seed") && r.json()["seed"].is_number_unsigned()) {
     out.seed = r.json()["seed"].get<std::uint64_t>();

@@ -1,7 +1,7 @@
 // A result.json written by `claspplan run`, read back: what `claspplan verify` needs to check the
 // clasp again (the robot, its final configuration, the loop, the object's collision mesh, the
 // seed) and, on request, the planned path in its environment (for the tests). Every problem is a
-// std::invalid_argument naming the file and the key.
+// InputError naming the file and the key.
 #pragma once
 
 #include <cstdint>
@@ -11,6 +11,7 @@
 
 #include <Eigen/Core>
 
+#include "perception/input_error.hpp"
 #include "robots/robot_model.hpp"
 #include "servo/linking.hpp"
 #include "tsrrt/clasp_setup.hpp"

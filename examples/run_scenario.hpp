@@ -10,6 +10,7 @@
 #include <nlohmann/json.hpp>
 
 #include "examples/scenario.hpp"
+#include "perception/input_error.hpp"
 
 namespace claspplan::cli {
 
@@ -31,7 +32,7 @@ struct RunOutcome {
 };
 
 /// Runs a scenario and writes result.json, timing.json and the pictures into options.out_dir.
-/// Throws std::invalid_argument for malformed input (a start pose in collision included).
+/// Throws InputError for malformed input (a start pose in collision included).
 RunOutcome run_scenario(const Scenario& scenario, const RunOptions& options);
 
 /// The secure-clasp check's outcome as JSON (result.json's `verification`, `verify --json`).

@@ -12,6 +12,7 @@
 #include "examples/scene_render.hpp"
 #include "perception/camera.hpp"
 #include "perception/file_io.hpp"
+#include "perception/input_error.hpp"
 
 namespace claspplan::cli {
 namespace {
@@ -26,7 +27,7 @@ class Reader {
   }
 
   [[noreturn]] void fail(const std::string& key, const std::string& what) const {
-    throw std::invalid_argument(where_ + (key.empty() ? "" : "." + key) + ": " + what);
+    throw InputError(where_ + (key.empty() ? "" : "." + key) + ": " + what);
   }
 
   /// Rejects keys outside `allowed` (catches typos that would silently fall back to defaults).
@@ -267,24 +268,35 @@ void read_object(const Reader& r, const fs::path& dir, ObjectSpec& o) {
 
 }  // namespace
 
+void check_verification_budget(const tsrrt::SecureClaspOptions& check, const std::string& sequences,
+                               const std::string& motions) {
+  if (static_cast<long>(check.sequences) * check.motions > kMaxVerificationMotions) {
+    throw InputError(sequences + " x " + motions + " must be at most " +
+                     std::to_string(kMaxVerificationMotions) + " motions, got " +
+                     std::to_string(check.sequences) + " x " + std::to_string(check.motions));
+  }
+}
+
 Scenario load_scenario(const std::string& path) {
-  if (!fs::is_regular_file(path)) throw std::invalid_argument(path + ": no such scenario file");
+  if (!fs::is_regular_file(path)) throw InputError(path + ": no such scenario file");
   std::ifstream in(path);
   std::stringstream text;
   text << in.rdbuf();
   return load_scenario_text(text.str(), path, fs::path(path).parent_path().string());
 }
 
-Scenario load_scenario_text(const std::string& text, const std::string& path,
-                            const std::string& base_dir) {
+namespace {
+
+Scenario parse_scenario(const std::string& text, const std::string& path,
+                        const std::string& base_dir) {
   YAML::Node root;
   try {
     root = YAML::Load(text);
   } catch (const YAML::Exception& e) {
-    throw std::invalid_argument(path + ": malformed YAML: " + e.msg + " (line " +
-                                std::to_string(e.mark.line + 1) + ")");
+    throw InputError(path + ": malformed YAML: " + e.msg + " (line " +
+                     std::to_string(e.mark.line + 1) + ")");
   }
-  if (!root.IsMap()) throw std::invalid_argument(path + ": a scenario is a YAML map");
+  if (!root.IsMap()) throw InputError(path + ": a scenario is a YAML map");
   const Reader r(root, path);
   r.only({"name", "robot", "start", "object", "environment", "clasp", "seed", "perception",
           "controller", "planner"});
@@ -327,7 +339,7 @@ Scenario load_scenario_text(const std::string& text, const std::string& path,
   const Reader per = r.child("perception");
   per.only({"points", "d", "d_factor", "min_hole", "seed", "workspace", "remove_plane"});
   auto& po = s.perception;
-  po.points = per.integer("points", po.points, 10, 1000000);
+  po.points = per.integer("points", po.points, 10, perception::kMaxPoints);
   po.d = per.number("d", po.d, 0.0, 10.0);
   po.d_factor = per.number("d_factor", po.d_factor, 0.5, 50.0);
   po.min_hole = per.number("min_hole", po.min_hole, 0.0, 10.0);
@@ -403,12 +415,14 @@ Scenario load_scenario_text(const std::string& text, const std::string& path,
   o.closing.clearance = pl.number("closing_clearance", o.closing.clearance, 0.0, 0.1);
   o.secure.sequences = pl.integer("verify_sequences", o.secure.sequences, 1, 1000);
   o.secure.motions = pl.integer("verify_motions", o.secure.motions, 1, 100000);
+  check_verification_budget(o.secure, path + ": planner.verify_sequences",
+                            "planner.verify_motions");
   o.secure.seed = s.seed;
   o.verify_in_search = pl.boolean("verify_in_search", o.verify_in_search);
   return s;
 }
 
-perception::PerceptionInputs scenario_inputs(const Scenario& s) {
+perception::PerceptionInputs build_inputs(const Scenario& s) {
   const ObjectSpec& o = s.object;
   perception::PerceptionInputs in;
   if (!o.depth.empty()) {
@@ -420,7 +434,7 @@ perception::PerceptionInputs scenario_inputs(const Scenario& s) {
   perception::TriangleMesh mesh;
   if (!o.mesh.empty()) {
     const perception::PerceptionInputs file = perception::load_inputs({o.mesh}, {});
-    if (file.meshes.empty()) throw std::invalid_argument(o.mesh + ": not a mesh");
+    if (file.meshes.empty()) throw InputError(o.mesh + ": not a mesh");
     mesh = file.meshes.front();
   } else if (o.shape->type == "torus") {
     mesh = objects::torus_mesh(o.shape->major_radius, o.shape->minor_radius);
@@ -458,6 +472,25 @@ perception::PerceptionInputs scenario_inputs(const Scenario& s) {
     in.depth_views.push_back(view);
   }
   return in;
+}
+
+}  // namespace
+
+Scenario load_scenario_text(const std::string& text, const std::string& path,
+                            const std::string& base_dir) {
+  // Whatever check the scenario fails, in the robot's or a file's reader too, is about the input.
+  return as_input_error([&] {
+    try {
+      return parse_scenario(text, path, base_dir);
+    } catch (const YAML::Exception& e) {  // a value of the wrong YAML type
+      throw InputError(path + ": " + e.msg + " (line " + std::to_string(e.mark.line + 1) + ")");
+    }
+  });
+}
+
+perception::PerceptionInputs scenario_inputs(const Scenario& s) {
+  // The inputs are the scenario's own files and shapes.
+  return as_input_error([&] { return build_inputs(s); });
 }
 
 }  // namespace claspplan::cli

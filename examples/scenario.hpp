@@ -13,6 +13,7 @@
 
 #include "examples/objects.hpp"
 #include "perception/depth_render.hpp"
+#include "perception/input_error.hpp"
 #include "perception/pipeline.hpp"
 #include "servo/clasp_controller.hpp"
 #include "servo/controller_run.hpp"
@@ -63,7 +64,17 @@ struct Scenario {
   tsrrt::ClaspPlanningOptions planning;
 };
 
-/// Reads and validates a scenario. Throws std::invalid_argument with the file and key for missing
+/// The secure-clasp check's budget: sequences x motions at most this many motions (20 times the
+/// paper's 10 x 500), so that a check ends even without a time limit (about 20 times the default
+/// check's time, which is 2 s for the demo).
+constexpr long kMaxVerificationMotions = 100000;
+
+/// Throws InputError (naming the options `sequences` and `motions`) when a check would exceed
+/// kMaxVerificationMotions.
+void check_verification_budget(const tsrrt::SecureClaspOptions& check, const std::string& sequences,
+                               const std::string& motions);
+
+/// Reads and validates a scenario. Throws InputError with the file and key for missing
 /// files, malformed YAML, unknown keys, wrong types and out-of-range values.
 Scenario load_scenario(const std::string& path);
 

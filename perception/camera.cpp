@@ -13,6 +13,7 @@
 #include <opencv2/core.hpp>
 #include <yaml-cpp/yaml.h>
 
+#include "perception/input_error.hpp"
 #include "perception/png_files.hpp"
 
 namespace claspplan::perception {
@@ -36,7 +37,7 @@ std::string num(double v) {
 }
 
 void require(bool ok, const std::string& what, const std::string& message) {
-  if (!ok) throw std::invalid_argument(what + ": " + message);
+  if (!ok) throw InputError(what + ": " + message);
 }
 
 }  // namespace
@@ -64,8 +65,7 @@ void validate_camera(const CameraModel& c, const std::string& what) {
 }
 
 CameraModel read_camera_yaml(const std::string& path) {
-  if (!std::filesystem::is_regular_file(path))
-    throw std::invalid_argument(path + ": camera file not found");
+  if (!std::filesystem::is_regular_file(path)) throw InputError(path + ": camera file not found");
   YAML::Node root;
   try {
     root = YAML::LoadFile(path);
@@ -73,23 +73,23 @@ CameraModel read_camera_yaml(const std::string& path) {
     std::string msg = e.what();
     for (char& ch : msg)
       if (ch == '\n') ch = ' ';
-    throw std::invalid_argument(path + ": not a valid YAML camera file (" + msg + ")");
+    throw InputError(path + ": not a valid YAML camera file (" + msg + ")");
   }
-  if (!root.IsMap()) throw std::invalid_argument(path + ": expected a YAML map of camera fields");
+  if (!root.IsMap()) throw InputError(path + ": expected a YAML map of camera fields");
   CameraModel c;
   auto scalar = [&](const char* key) -> double {
     const YAML::Node n = root[key];
-    if (!n) throw std::invalid_argument(path + ": missing field '" + key + "'");
+    if (!n) throw InputError(path + ": missing field '" + key + "'");
     try {
       return n.as<double>();
     } catch (const YAML::Exception&) {
-      throw std::invalid_argument(path + ": field '" + key + "' must be a number");
+      throw InputError(path + ": field '" + key + "' must be a number");
     }
   };
   auto integer = [&](const char* key) -> int {
     const double v = scalar(key);
     if (!std::isfinite(v) || v != std::floor(v) || std::abs(v) > 1e9)
-      throw std::invalid_argument(path + ": field '" + key + "' must be an integer, got " + num(v));
+      throw InputError(path + ": field '" + key + "' must be an integer, got " + num(v));
     return static_cast<int>(v);
   };
   c.width = integer("width");
@@ -100,7 +100,7 @@ CameraModel read_camera_yaml(const std::string& path) {
   c.cy = scalar("cy");
   c.depth_scale = scalar("depth_scale");
   const YAML::Node t = root["T_world_camera"];
-  if (!t) throw std::invalid_argument(path + ": missing field 'T_world_camera'");
+  if (!t) throw InputError(path + ": missing field 'T_world_camera'");
   std::vector<double> values;
   try {
     if (!t.IsSequence()) throw YAML::Exception(YAML::Mark(), "not a list");
@@ -113,12 +113,11 @@ CameraModel read_camera_yaml(const std::string& path) {
       }
     }
   } catch (const YAML::Exception&) {
-    throw std::invalid_argument(
-        path + ": T_world_camera must be 16 numbers (4x4 row-major) or 4 rows of 4");
+    throw InputError(path + ": T_world_camera must be 16 numbers (4x4 row-major) or 4 rows of 4");
   }
   if (values.size() != 16)
-    throw std::invalid_argument(path + ": T_world_camera must have 16 numbers, got " +
-                                std::to_string(values.size()));
+    throw InputError(path + ": T_world_camera must have 16 numbers, got " +
+                     std::to_string(values.size()));
   Eigen::Matrix4d M;
   for (int i = 0; i < 16; ++i) M(i / 4, i % 4) = values[i];
   c.T_world_camera.matrix() = M;
@@ -152,7 +151,7 @@ CameraModel look_at_camera(const Eigen::Vector3d& position, const Eigen::Vector3
   Eigen::Vector3d z = target - position;
   const double dist = z.norm();
   if (!(dist > 1e-9) || !position.allFinite() || !target.allFinite())
-    throw std::invalid_argument("view position must differ from the target and be finite");
+    throw InputError("view position must differ from the target and be finite");
   z /= dist;
   Eigen::Vector3d up = Eigen::Vector3d::UnitZ();
   if (std::abs(z.dot(up)) > 0.99) up = Eigen::Vector3d::UnitX();
@@ -210,22 +209,21 @@ void check_png_chunks(const std::string& path) {
   bool first = true;
   while (true) {
     if (at + 12 > data.size())
-      throw std::invalid_argument(path + ": cannot decode the PNG (truncated: no IEND chunk)");
+      throw InputError(path + ": cannot decode the PNG (truncated: no IEND chunk)");
     const std::uint32_t len = be32(at);
     if (len > data.size() - at - 12)
-      throw std::invalid_argument(path + ": cannot decode the PNG (truncated chunk)");
+      throw InputError(path + ": cannot decode the PNG (truncated chunk)");
     const std::string type = data.substr(at + 4, 4);
     if (crc32(b + at + 4, len + 4) ^ 0xffffffffu ^ be32(at + 8 + len))
-      throw std::invalid_argument(path + ": cannot decode the PNG (corrupt " + type + " chunk)");
+      throw InputError(path + ": cannot decode the PNG (corrupt " + type + " chunk)");
     if (first) {
       if (type != "IHDR" || len != 13)
-        throw std::invalid_argument(path + ": cannot decode the PNG (no IHDR chunk)");
+        throw InputError(path + ": cannot decode the PNG (no IHDR chunk)");
       const int bit_depth = b[at + 8 + 8], colour = b[at + 8 + 9];
       if (bit_depth != 16 || colour != 0)
-        throw std::invalid_argument(path + ": depth must be a 16-bit single-channel PNG, got " +
-                                    std::to_string(bit_depth) + "-bit " +
-                                    (colour == 0 ? "grey" : "colour") + " (PNG colour type " +
-                                    std::to_string(colour) + ")");
+        throw InputError(path + ": depth must be a 16-bit single-channel PNG, got " +
+                         std::to_string(bit_depth) + "-bit " + (colour == 0 ? "grey" : "colour") +
+                         " (PNG colour type " + std::to_string(colour) + ")");
       first = false;
     }
     at += 12 + len;
@@ -237,18 +235,18 @@ void check_png_chunks(const std::string& path) {
 
 DepthImage read_depth_png(const std::string& path, const CameraModel& camera) {
   std::ifstream in(path, std::ios::binary);
-  if (!in) throw std::invalid_argument(path + ": depth image not found or unreadable");
+  if (!in) throw InputError(path + ": depth image not found or unreadable");
   unsigned char magic[8] = {0};
   in.read(reinterpret_cast<char*>(magic), 8);
   static const unsigned char kPng[8] = {0x89, 'P', 'N', 'G', '\r', '\n', 0x1a, '\n'};
   if (in.gcount() < 8 || std::memcmp(magic, kPng, 8) != 0)
-    throw std::invalid_argument(path + ": not a PNG file");
+    throw InputError(path + ": not a PNG file");
   check_png_chunks(path);
   const Gray16Image img = read_png_gray16(path);
   if (img.width != camera.width || img.height != camera.height)
-    throw std::invalid_argument(path + ": image is " + std::to_string(img.width) + "x" +
-                                std::to_string(img.height) + " but the camera is " +
-                                std::to_string(camera.width) + "x" + std::to_string(camera.height));
+    throw InputError(path + ": image is " + std::to_string(img.width) + "x" +
+                     std::to_string(img.height) + " but the camera is " +
+                     std::to_string(camera.width) + "x" + std::to_string(camera.height));
   DepthImage out(img.width, img.height);
   for (std::size_t i = 0; i < img.pixels.size(); ++i)
     out.depth[i] = static_cast<float>(img.pixels[i] * camera.depth_scale);

@@ -19,6 +19,8 @@
 #include <Eigen/Core>
 #include <Eigen/Geometry>
 
+#include "perception/input_error.hpp"
+
 namespace claspplan::perception {
 
 struct CameraModel {
@@ -36,7 +38,7 @@ struct CameraModel {
   Eigen::Vector3d back_project(double u, double v, double z) const;
 };
 
-/// Throws std::invalid_argument("<what>: fx must be > 0, got -3") for any invalid field.
+/// Throws InputError("<what>: fx must be > 0, got -3") for any invalid field.
 void validate_camera(const CameraModel& camera, const std::string& what);
 
 /// Reads and validates a camera file (format above).
@@ -69,7 +71,7 @@ struct DepthView {
 };
 
 /// Reads a 16-bit PNG (libpng) and scales it by the camera's depth_scale. The size must match the
-/// camera. Throws std::invalid_argument for missing, non-PNG, truncated, 8-bit or colour files.
+/// camera. Throws InputError for missing, non-PNG, truncated, 8-bit or colour files.
 /// An all-zero image is read (it is the pipeline that rejects an empty cloud).
 DepthImage read_depth_png(const std::string& path, const CameraModel& camera);
 /// Writes depth / depth_scale rounded to 16 bits; depths beyond 65535 units become 0.

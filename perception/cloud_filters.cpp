@@ -15,6 +15,7 @@
 #include <pcl/segmentation/sac_segmentation.h>
 
 #include "perception/point_index.hpp"
+#include "perception/random_draws.hpp"
 
 namespace claspplan::perception {
 
@@ -50,8 +51,8 @@ PointCloud random_subset(const PointCloud& cloud, int count, std::uint64_t seed)
   std::iota(idx.begin(), idx.end(), 0);
   std::mt19937_64 rng(seed);
   for (int i = 0; i < count; ++i) {  // partial Fisher-Yates
-    std::uniform_int_distribution<int> pick(i, static_cast<int>(idx.size()) - 1);
-    std::swap(idx[i], idx[pick(rng)]);
+    const std::size_t pick = i + uniform_index(rng(), idx.size() - i);
+    std::swap(idx[i], idx[pick]);
   }
   idx.resize(count);
   std::sort(idx.begin(), idx.end());
@@ -135,7 +136,7 @@ std::vector<int> farthest_point_indices(const PointCloud& cloud, int count, std:
     return picked;
   }
   std::mt19937_64 rng(seed);
-  const int start = std::uniform_int_distribution<int>(0, m - 1)(rng);
+  const int start = static_cast<int>(uniform_index(rng(), m));
   PointIndex index(cloud);
   std::vector<double> mind2(m);
   std::vector<std::pair<double, int>> heap_data(m);

@@ -4,6 +4,7 @@
 #include <stdexcept>
 
 #include "perception/cloud_filters.hpp"
+#include "perception/input_error.hpp"
 
 namespace claspplan::perception {
 
@@ -16,7 +17,7 @@ std::array<int, 3> SimplicialComplex::triangle_vertices(int t) const {
 
 SimplicialComplex build_complex(const DelaunayGraph& delaunay, double d) {
   if (!(d > 0) || !std::isfinite(d))
-    throw std::invalid_argument("d must be a positive number of metres, got " + std::to_string(d));
+    throw InputError("d must be a positive number of metres, got " + std::to_string(d));
   SimplicialComplex k;
   k.points = delaunay.points;
   k.d = d;
@@ -36,7 +37,7 @@ SimplicialComplex build_complex(const DelaunayGraph& delaunay, double d) {
 }
 
 double automatic_d(const PointCloud& points, double factor) {
-  if (!(factor > 0)) throw std::invalid_argument("the automatic-d factor must be > 0");
+  if (!(factor > 0)) throw InputError("the automatic-d factor must be > 0");
   return factor * mean_spacing(points);
 }
 

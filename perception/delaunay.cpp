@@ -11,6 +11,7 @@
 
 #include "perception/cloud_filters.hpp"
 #include "perception/complex.hpp"
+#include "perception/input_error.hpp"
 
 namespace claspplan::perception {
 
@@ -25,12 +26,11 @@ using Delaunay = CGAL::Delaunay_triangulation_3<Kernel, Tds>;
 DelaunayGraph delaunay_3d(const PointCloud& points) {
   for (size_t i = 0; i < points.size(); ++i)
     if (!points[i].allFinite())
-      throw std::invalid_argument("point " + std::to_string(i) +
-                                  " has a NaN or infinite coordinate");
+      throw InputError("point " + std::to_string(i) + " has a NaN or infinite coordinate");
   const size_t distinct = unique_points(points).size();
   if (distinct < 4)
-    throw std::invalid_argument("fewer than 4 distinct points (" + std::to_string(distinct) +
-                                "): a 3-D triangulation needs at least 4");
+    throw InputError("fewer than 4 distinct points (" + std::to_string(distinct) +
+                     "): a 3-D triangulation needs at least 4");
   std::vector<std::pair<Kernel::Point_3, int>> input;
   input.reserve(points.size());
   for (size_t i = 0; i < points.size(); ++i)
@@ -38,9 +38,9 @@ DelaunayGraph delaunay_3d(const PointCloud& points) {
                        static_cast<int>(i));
   const Delaunay dt(input.begin(), input.end());  // spatially sorted insertion
   if (dt.dimension() < 3)
-    throw std::invalid_argument(dt.dimension() == 2
-                                    ? "all points are coplanar: K_d needs points that span 3-D"
-                                    : "all points are collinear: K_d needs points that span 3-D");
+    throw InputError(dt.dimension() == 2
+                         ? "all points are coplanar: K_d needs points that span 3-D"
+                         : "all points are collinear: K_d needs points that span 3-D");
   DelaunayGraph g;
   g.points = points;
   g.tetrahedra = static_cast<int>(dt.number_of_finite_cells());

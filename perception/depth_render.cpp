@@ -6,6 +6,9 @@
 #include <random>
 #include <stdexcept>
 
+#include "perception/input_error.hpp"
+#include "perception/random_draws.hpp"
+
 namespace claspplan::perception {
 
 namespace {
@@ -70,7 +73,7 @@ DepthImage render_depth(const TriangleMesh& mesh, const CameraModel& camera,
                         const DepthNoise& noise, double near) {
   validate_camera(camera, "render_depth camera");
   if (!(noise.sigma >= 0.0) || !(noise.dropout >= 0.0 && noise.dropout <= 1.0))
-    throw std::invalid_argument("render_depth: noise sigma must be >= 0 and dropout in [0, 1]");
+    throw InputError("render_depth: noise sigma must be >= 0 and dropout in [0, 1]");
   const int W = camera.width, H = camera.height;
   const double inf = std::numeric_limits<double>::infinity();
   std::vector<double> zbuf(static_cast<size_t>(W) * H, inf);
@@ -95,13 +98,12 @@ DepthImage render_depth(const TriangleMesh& mesh, const CameraModel& camera,
   }
   DepthImage img(W, H);
   std::mt19937_64 rng(noise.seed);
-  std::uniform_real_distribution<double> uni(0.0, 1.0);
-  std::normal_distribution<double> gauss(0.0, 1.0);
   const bool noisy = noise.sigma > 0.0 || noise.dropout > 0.0;
   for (size_t i = 0; i < zbuf.size(); ++i) {
     double z = zbuf[i];
     if (noisy) {
-      const double drop = uni(rng), n = gauss(rng);
+      const double drop = uniform01(rng());
+      const double n = standard_normal(rng);
       if (z < inf) {
         if (drop < noise.dropout)
           z = inf;
@@ -154,8 +156,7 @@ PointCloud sample_visible_surface(const TriangleMesh& mesh, const std::vector<De
       if (seen && static_cast<int>(out.size()) < count) out.push_back(p);
     }
   }
-  if (out.empty())
-    throw std::invalid_argument("no part of the mesh is visible from the --view positions");
+  if (out.empty()) throw InputError("no part of the mesh is visible from the --view positions");
   return out;
 }
 
@@ -167,7 +168,7 @@ std::vector<DepthView> render_views(const TriangleMesh& mesh,
   std::vector<DepthView> views;
   for (const auto& p : positions) {
     if ((p - target).norm() <= radius)
-      throw std::invalid_argument("view position is inside the mesh's bounding sphere");
+      throw InputError("view position is inside the mesh's bounding sphere");
     DepthView view;
     view.camera = look_at_camera(p, target, radius);
     view.image = render_depth(mesh, view.camera);

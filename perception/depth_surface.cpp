@@ -7,6 +7,8 @@
 #include <stdexcept>
 #include <string>
 
+#include "perception/input_error.hpp"
+
 namespace claspplan::perception {
 
 namespace {
@@ -120,11 +122,10 @@ void check_view(const DepthView& view, const std::string& what) {
   const DepthImage& img = view.image;
   if (img.width != view.camera.width || img.height != view.camera.height ||
       img.depth.size() != static_cast<size_t>(img.width) * img.height)
-    throw std::invalid_argument(what + ": the depth image is " + std::to_string(img.width) + "x" +
-                                std::to_string(img.height) + " (" +
-                                std::to_string(img.depth.size()) + " values) but the camera is " +
-                                std::to_string(view.camera.width) + "x" +
-                                std::to_string(view.camera.height));
+    throw InputError(what + ": the depth image is " + std::to_string(img.width) + "x" +
+                     std::to_string(img.height) + " (" + std::to_string(img.depth.size()) +
+                     " values) but the camera is " + std::to_string(view.camera.width) + "x" +
+                     std::to_string(view.camera.height));
 }
 
 TriangleMesh surface_of(const DepthView& view, const DepthSurfaceOptions& options) {

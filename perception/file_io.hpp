@@ -1,6 +1,6 @@
 // Readers and writers for point clouds and meshes. All parsers are our own (PCL 1.13's readers
 // crash or hang on bad files): headers, declared counts and sizes are checked against the file
-// before anything is allocated, and every problem is a one-line std::invalid_argument naming the
+// before anything is allocated, and every problem is a one-line InputError naming the
 // file.
 //
 //   .pcd  clouds: DATA ascii, binary, binary_compressed; fields x y z of type F (4 or 8 bytes),
@@ -21,6 +21,7 @@
 
 #include <string>
 
+#include "perception/input_error.hpp"
 #include "perception/mesh.hpp"
 
 namespace claspplan::perception {
@@ -32,7 +33,7 @@ struct GeometryFile {
   bool is_mesh = false;
 };
 
-/// Reads any supported file by its extension (case-insensitive). Throws std::invalid_argument for
+/// Reads any supported file by its extension (case-insensitive). Throws InputError for
 /// unknown extensions, unreadable, empty, truncated or malformed files and NaN/Inf coordinates.
 GeometryFile read_geometry(const std::string& path);
 

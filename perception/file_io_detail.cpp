@@ -7,10 +7,12 @@
 #include <iomanip>
 #include <stdexcept>
 
+#include "perception/input_error.hpp"
+
 namespace claspplan::perception::file_io_detail {
 
 [[noreturn]] void fail(const std::string& path, const std::string& message) {
-  throw std::invalid_argument(path + ": " + message);
+  throw InputError(path + ": " + message);
 }
 
 std::string read_all(const std::string& path) {

@@ -15,7 +15,7 @@ namespace claspplan::perception::file_io_detail {
 
 constexpr long long kMaxCount = 50'000'000;
 
-/// Throws std::invalid_argument "<path>: <message>".
+/// Throws InputError "<path>: <message>".
 [[noreturn]] void fail(const std::string& path, const std::string& message);
 
 /// The whole file; fails when it is missing, not a regular file, unreadable or empty.

@@ -11,6 +11,7 @@
 #include <utility>
 
 #include "perception/homology_graph.hpp"
+#include "perception/input_error.hpp"
 
 namespace claspplan::perception {
 
@@ -98,9 +99,9 @@ Annotation annotate(const SimplicialComplex& k, const Graph& g, bool need_annota
   }
   a.beta1 = kc - static_cast<int>(reduced.size());
   if (a.beta1 > max_beta1)
-    throw std::invalid_argument("K_d has beta1 = " + std::to_string(a.beta1) + " (more than " +
-                                std::to_string(max_beta1) + " loops): d = " + std::to_string(k.d) +
-                                " m is too small for these points; use a larger d");
+    throw InputError("K_d has beta1 = " + std::to_string(a.beta1) + " (more than " +
+                     std::to_string(max_beta1) + " loops): d = " + std::to_string(k.d) +
+                     " m is too small for these points; use a larger d");
   if (!need_annotations || a.beta1 == 0) return a;
   // Annotation of coordinate i: e_i reduced by the pivots, read on the beta1 free coordinates.
   // A pivot column's entries are all below its pivot, so one increasing pass suffices.

@@ -6,6 +6,9 @@
 #include <random>
 #include <stdexcept>
 
+#include "perception/input_error.hpp"
+#include "perception/random_draws.hpp"
+
 namespace claspplan::perception {
 
 namespace {
@@ -20,29 +23,28 @@ double triangle_area(const TriangleMesh& m, const std::array<int, 3>& t) {
 }  // namespace
 
 void validate_mesh(const TriangleMesh& mesh, const std::string& what) {
-  if (mesh.vertices.empty()) throw std::invalid_argument(what + ": the mesh has no vertices");
-  if (mesh.triangles.empty()) throw std::invalid_argument(what + ": the mesh has no faces");
+  if (mesh.vertices.empty()) throw InputError(what + ": the mesh has no vertices");
+  if (mesh.triangles.empty()) throw InputError(what + ": the mesh has no faces");
   for (size_t i = 0; i < mesh.vertices.size(); ++i) {
     if (!mesh.vertices[i].allFinite())
-      throw std::invalid_argument(what + ": vertex " + std::to_string(i) +
-                                  " has a NaN or infinite coordinate");
+      throw InputError(what + ": vertex " + std::to_string(i) +
+                       " has a NaN or infinite coordinate");
   }
   const int n = static_cast<int>(mesh.vertices.size());
   for (size_t i = 0; i < mesh.triangles.size(); ++i) {
     for (int v : mesh.triangles[i]) {
       if (v < 0 || v >= n)
-        throw std::invalid_argument(what + ": face " + std::to_string(i) + " uses vertex " +
-                                    std::to_string(v) + " of " + std::to_string(n));
+        throw InputError(what + ": face " + std::to_string(i) + " uses vertex " +
+                         std::to_string(v) + " of " + std::to_string(n));
     }
   }
 }
 
 void validate_cloud(const PointCloud& cloud, const std::string& what) {
-  if (cloud.empty()) throw std::invalid_argument(what + ": no points");
+  if (cloud.empty()) throw InputError(what + ": no points");
   for (size_t i = 0; i < cloud.size(); ++i) {
     if (!cloud[i].allFinite())
-      throw std::invalid_argument(what + ": point " + std::to_string(i) +
-                                  " has a NaN or infinite coordinate");
+      throw InputError(what + ": point " + std::to_string(i) + " has a NaN or infinite coordinate");
   }
 }
 
@@ -93,18 +95,17 @@ PointCloud sample_surface(const TriangleMesh& mesh, int count, std::uint64_t see
     cumulative.push_back(total);
     index.push_back(static_cast<int>(i));
   }
-  if (cumulative.empty())
-    throw std::invalid_argument("the mesh has no triangle of positive area to sample");
+  if (cumulative.empty()) throw InputError("the mesh has no triangle of positive area to sample");
   std::mt19937_64 rng(seed);
-  std::uniform_real_distribution<double> uni(0.0, 1.0);
   PointCloud out;
   out.reserve(count);
   for (int k = 0; k < count; ++k) {
-    const double r = uni(rng) * total;
+    const double r = uniform01(rng()) * total;
     size_t j = std::upper_bound(cumulative.begin(), cumulative.end(), r) - cumulative.begin();
     j = std::min(j, cumulative.size() - 1);
     const auto& t = mesh.triangles[index[j]];
-    double s = uni(rng), u = uni(rng);
+    double s = uniform01(rng());
+    double u = uniform01(rng());
     if (s + u > 1.0) {  // fold the square onto the triangle: uniform by area
       s = 1.0 - s;
       u = 1.0 - u;

@@ -10,6 +10,7 @@
 #include "perception/cloud_filters.hpp"
 #include "perception/depth_render.hpp"
 #include "perception/file_io.hpp"
+#include "perception/input_error.hpp"
 
 namespace claspplan::perception {
 
@@ -33,22 +34,22 @@ std::string lower_ext(const std::string& path) {
 }
 
 void validate_options(const PerceptionOptions& o) {
-  if (o.points < 4 || o.points > 10'000'000)
-    throw std::invalid_argument("--points must be in 4..10000000, got " + std::to_string(o.points));
+  if (o.points < 4 || o.points > kMaxPoints)
+    throw InputError("--points must be in 4.." + std::to_string(kMaxPoints) + ", got " +
+                     std::to_string(o.points));
   if (!(o.d >= 0) || !std::isfinite(o.d))
-    throw std::invalid_argument("--d must be > 0 metres (or 0 for automatic), got " +
-                                std::to_string(o.d));
+    throw InputError("--d must be > 0 metres (or 0 for automatic), got " + std::to_string(o.d));
   if (!(o.d_factor > 0) || !std::isfinite(o.d_factor))
-    throw std::invalid_argument("the automatic-d factor must be > 0");
+    throw InputError("the automatic-d factor must be > 0");
   if (!(o.persistence >= 0) || !std::isfinite(o.persistence))
-    throw std::invalid_argument("the persistence factor must be >= 0");
+    throw InputError("the persistence factor must be >= 0");
   if (!(o.finger_thickness >= 0 && o.closed_aperture >= 0) ||
       !std::isfinite(o.finger_thickness + o.closed_aperture))
-    throw std::invalid_argument("hand sizes must be finite and >= 0");
+    throw InputError("hand sizes must be finite and >= 0");
   if (!(o.min_hole > 0) || !std::isfinite(o.min_hole))
-    throw std::invalid_argument("--min-hole must be > 0 metres, got " + std::to_string(o.min_hole));
+    throw InputError("--min-hole must be > 0 metres, got " + std::to_string(o.min_hole));
   if (o.targets < 1 || o.targets > 100000)
-    throw std::invalid_argument("--targets must be in 1..100000, got " + std::to_string(o.targets));
+    throw InputError("--targets must be in 1..100000, got " + std::to_string(o.targets));
 }
 
 void say(const PerceptionOptions& o, const std::string& msg) {
@@ -71,9 +72,9 @@ PerceptionInputs load_inputs(const std::vector<std::string>& paths,
   size_t pngs = 0;
   for (const auto& p : paths) pngs += lower_ext(p) == ".png";
   if (pngs != cameras.size())
-    throw std::invalid_argument(std::to_string(pngs) + " depth image(s) but " +
-                                std::to_string(cameras.size()) +
-                                " --camera file(s): give one camera per PNG, in the same order");
+    throw InputError(std::to_string(pngs) + " depth image(s) but " +
+                     std::to_string(cameras.size()) +
+                     " --camera file(s): give one camera per PNG, in the same order");
   size_t cam = 0;
   for (const auto& p : paths) {
     if (lower_ext(p) == ".png") {
@@ -81,7 +82,7 @@ PerceptionInputs load_inputs(const std::vector<std::string>& paths,
       v.camera = read_camera_yaml(cameras[cam++]);
       v.image = read_depth_png(p, v.camera);
       if (v.image.valid_count() == 0)
-        throw std::invalid_argument(p + ": the depth image has no reading (all pixels are 0)");
+        throw InputError(p + ": the depth image has no reading (all pixels are 0)");
       in.depth_views.push_back(std::move(v));
       continue;
     }
@@ -106,7 +107,7 @@ struct Prepared {
 Prepared prepare(const PerceptionInputs& in, const PerceptionOptions& o) {
   validate_options(o);
   if (in.depth_views.empty() && in.clouds.empty() && in.meshes.empty())
-    throw std::invalid_argument("no input: give depth images with --camera, clouds or meshes");
+    throw InputError("no input: give depth images with --camera, clouds or meshes");
   const int n = o.points;
   const int budget = kOversample * n;
   Prepared r;
@@ -120,10 +121,10 @@ Prepared prepare(const PerceptionInputs& in, const PerceptionOptions& o) {
       depth.insert(depth.end(), pts.begin(), pts.end());
       r.views.push_back(v);
     }
-    if (depth.empty()) throw std::invalid_argument("the depth images have no reading (all 0)");
+    if (depth.empty()) throw InputError("the depth images have no reading (all 0)");
     r.input_points += static_cast<int>(depth.size());
     if (crop_to_box(depth, o.workspace).empty())
-      throw std::invalid_argument("no depth point lies inside the workspace box");
+      throw InputError("no depth point lies inside the workspace box");
     if (o.remove_plane) {
       // The support is searched a little below and around the workspace: a crop just above the
       // table must not hide it (loop ranking needs to know where the table is).
@@ -141,8 +142,8 @@ Prepared prepare(const PerceptionInputs& in, const PerceptionOptions& o) {
     }
     depth = crop_to_box(depth, o.workspace);
     if (depth.empty())
-      throw std::invalid_argument(o.remove_plane ? "no depth point above the supporting plane"
-                                                 : "no depth point lies inside the workspace box");
+      throw InputError(o.remove_plane ? "no depth point above the supporting plane"
+                                      : "no depth point lies inside the workspace box");
     depth = random_subset(depth, kDepthOversample * n, o.seed);
     const size_t before = depth.size();
     if (o.outlier_k > 0) depth = remove_statistical_outliers(depth, o.outlier_k, o.outlier_stddev);
@@ -173,8 +174,8 @@ Prepared prepare(const PerceptionInputs& in, const PerceptionOptions& o) {
   }
   all = unique_points(all);
   if (all.size() < 4)
-    throw std::invalid_argument("fewer than 4 distinct points (" + std::to_string(all.size()) +
-                                ") after filtering: nothing to triangulate");
+    throw InputError("fewer than 4 distinct points (" + std::to_string(all.size()) +
+                     ") after filtering: nothing to triangulate");
   all = random_subset(all, budget, o.seed + 1);
   r.cloud = spatial_order(farthest_point_sample(all, n, o.seed + 2));
   return r;

@@ -5,6 +5,8 @@
 
 #include <png.h>
 
+#include "perception/input_error.hpp"
+
 namespace claspplan::perception {
 namespace {
 
@@ -33,19 +35,19 @@ Gray16Image read_png_gray16(const std::string& path) {
   std::memset(&image, 0, sizeof image);
   image.version = PNG_IMAGE_VERSION;
   if (!png_image_begin_read_from_file(&image, path.c_str())) {
-    throw std::invalid_argument(path + ": cannot decode the PNG (" + message(image) + ")");
+    throw InputError(path + ": cannot decode the PNG (" + message(image) + ")");
   }
   // Only a file that is 16-bit grey already (no colour, no alpha, no palette) is a depth image.
   if (image.format != PNG_FORMAT_LINEAR_Y) {
     png_image_free(&image);
-    throw std::invalid_argument(path + ": depth must be a 16-bit single-channel PNG");
+    throw InputError(path + ": depth must be a 16-bit single-channel PNG");
   }
   Gray16Image out;
   out.width = static_cast<int>(image.width);
   out.height = static_cast<int>(image.height);
   out.pixels.resize(static_cast<std::size_t>(image.width) * image.height);
   if (!png_image_finish_read(&image, nullptr, out.pixels.data(), 0, nullptr)) {
-    throw std::invalid_argument(path + ": cannot decode the PNG (" + message(image) + ")");
+    throw InputError(path + ": cannot decode the PNG (" + message(image) + ")");
   }
   return out;
 }

@@ -16,8 +16,8 @@ struct Gray16Image {
   std::vector<std::uint16_t> pixels;  ///< row-major, width * height
 };
 
-/// Reads a 16-bit single-channel PNG as stored (no gamma conversion). Throws
-/// std::invalid_argument with a one-line reason for anything else.
+/// Reads a 16-bit single-channel PNG as stored (no gamma conversion). Throws InputError with a
+/// one-line reason for anything else.
 Gray16Image read_png_gray16(const std::string& path);
 
 /// Writes a 16-bit single-channel PNG. Throws std::runtime_error when the file cannot be written.

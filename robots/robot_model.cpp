@@ -9,6 +9,7 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "perception/input_error.hpp"
 #include "robots/embedded_models.hpp"
 #include "robots/robot_model_detail.hpp"
 
@@ -45,13 +46,13 @@ int RobotModel::find_joint(const std::string& joint_name) const {
 
 int RobotModel::link_index(const std::string& link_name) const {
   const int i = find_link(link_name);
-  if (i < 0) throw std::invalid_argument(name + ": no link named '" + link_name + "'");
+  if (i < 0) throw InputError(name + ": no link named '" + link_name + "'");
   return i;
 }
 
 int RobotModel::joint_index(const std::string& joint_name) const {
   const int i = find_joint(joint_name);
-  if (i < 0) throw std::invalid_argument(name + ": no actuated joint named '" + joint_name + "'");
+  if (i < 0) throw InputError(name + ": no actuated joint named '" + joint_name + "'");
   return i;
 }
 
@@ -91,21 +92,21 @@ Eigen::VectorXd RobotModel::open_hand(const Eigen::VectorXd& q) const {
 
 Eigen::VectorXd RobotModel::complete_q(const std::vector<double>& prefix) const {
   if (static_cast<int>(prefix.size()) > dof()) {
-    throw std::invalid_argument(name + " has " + std::to_string(dof()) + " actuated joints, got " +
-                                std::to_string(prefix.size()) + " values");
+    throw InputError(name + " has " + std::to_string(dof()) + " actuated joints, got " +
+                     std::to_string(prefix.size()) + " values");
   }
   Eigen::VectorXd q = home;
   for (size_t i = 0; i < prefix.size(); ++i) {
     const Joint& j = joints[i];
     const double v = prefix[i];
     if (!std::isfinite(v)) {
-      throw std::invalid_argument("value " + std::to_string(i + 1) + " (" + j.name +
-                                  ") is not a finite number");
+      throw InputError("value " + std::to_string(i + 1) + " (" + j.name +
+                       ") is not a finite number");
     }
     if (v < j.lower - 1e-9 || v > j.upper + 1e-9) {
       std::ostringstream s;
       s << j.name << " = " << v << " is outside its limits [" << j.lower << ", " << j.upper << "]";
-      throw std::invalid_argument(s.str());
+      throw InputError(s.str());
     }
     q[i] = std::min(std::max(v, j.lower), j.upper);
   }
@@ -115,7 +116,7 @@ Eigen::VectorXd RobotModel::complete_q(const std::vector<double>& prefix) const 
 namespace robot_model_detail {
 
 [[noreturn]] void fail(const std::string& file, const std::string& what) {
-  throw std::invalid_argument(file + ": " + what);
+  throw InputError(file + ": " + what);
 }
 
 std::string one_line(std::string s) {
@@ -134,25 +135,19 @@ using robot_model_detail::build_robot;
 std::string read_text_file(const std::filesystem::path& path, const std::string& what) {
   std::error_code ec;
   if (!std::filesystem::is_regular_file(path, ec))
-    throw std::invalid_argument(path.string() + ": " + what + " not found or not a regular file");
+    throw InputError(path.string() + ": " + what + " not found or not a regular file");
   const auto size = std::filesystem::file_size(path, ec);
-  if (ec) throw std::invalid_argument(path.string() + ": cannot read the " + what);
+  if (ec) throw InputError(path.string() + ": cannot read the " + what);
   if (size > 64u * 1024u * 1024u)
-    throw std::invalid_argument(path.string() + ": the " + what + " is larger than 64 MB");
+    throw InputError(path.string() + ": the " + what + " is larger than 64 MB");
   std::ifstream in(path, std::ios::binary);
-  if (!in) throw std::invalid_argument(path.string() + ": cannot open the " + what);
+  if (!in) throw InputError(path.string() + ": cannot open the " + what);
   std::stringstream ss;
   ss << in.rdbuf();
   return ss.str();
 }
 
-}  // namespace
-
-std::vector<std::string> builtin_robots() {
-  return {"kr5_sdh", "kr5_dlr", "kr5_icub", "kr5_armar3"};
-}
-
-RobotModel load_robot(const std::string& name_or_path) {
+RobotModel load_robot_unchecked(const std::string& name_or_path) {
   const auto names = builtin_robots();
   if (std::find(names.begin(), names.end(), name_or_path) != names.end()) {
     const std::string yaml_name = name_or_path + ".yaml";
@@ -162,8 +157,7 @@ RobotModel load_robot(const std::string& name_or_path) {
         yaml, yaml_name,
         [](const std::string& urdf_name) {
           const char* text = embedded_model_file(urdf_name);
-          if (!text)
-            throw std::invalid_argument(urdf_name + ": not one of the built-in model files");
+          if (!text) throw InputError(urdf_name + ": not one of the built-in model files");
           return std::make_pair(urdf_name, std::string(text));
         },
         name_or_path);
@@ -173,8 +167,8 @@ RobotModel load_robot(const std::string& name_or_path) {
   if (!std::filesystem::exists(path, ec)) {
     std::string list;
     for (const auto& n : names) list += (list.empty() ? "" : ", ") + n;
-    throw std::invalid_argument("robot '" + name_or_path + "' is neither a built-in robot (" +
-                                list + ") nor an existing hand-description file");
+    throw InputError("robot '" + name_or_path + "' is neither a built-in robot (" + list +
+                     ") nor an existing hand-description file");
   }
   const std::string yaml = read_text_file(path, "hand description");
   return build_robot(
@@ -186,11 +180,24 @@ RobotModel load_robot(const std::string& name_or_path) {
       path.string());
 }
 
+}  // namespace
+
+std::vector<std::string> builtin_robots() {
+  return {"kr5_sdh", "kr5_dlr", "kr5_icub", "kr5_armar3"};
+}
+
+RobotModel load_robot(const std::string& name_or_path) {
+  // Whatever check a description fails, deep in the model's construction too, is about the file.
+  return as_input_error([&] { return load_robot_unchecked(name_or_path); });
+}
+
 RobotModel load_robot_from_text(const std::string& yaml_text, const std::string& urdf_text,
                                 const std::string& yaml_name, const std::string& urdf_name) {
-  return build_robot(
-      yaml_text, yaml_name,
-      [&](const std::string&) { return std::make_pair(urdf_name, urdf_text); }, yaml_name);
+  return as_input_error([&] {
+    return build_robot(
+        yaml_text, yaml_name,
+        [&](const std::string&) { return std::make_pair(urdf_name, urdf_text); }, yaml_name);
+  });
 }
 
 }  // namespace claspplan::robots

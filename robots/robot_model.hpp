@@ -18,6 +18,8 @@
 #include <Eigen/Core>
 #include <Eigen/Geometry>
 
+#include "perception/input_error.hpp"
+
 namespace claspplan::robots {
 
 /// How a URDF joint moves its child link.
@@ -123,7 +125,7 @@ struct RobotModel {
   double vlink_goal = 0.8;  ///< default virtual-linking goal (paper Sec. V)
   Eigen::VectorXd home;     ///< default start: arm home pose and the hand's open pre-shape
 
-  /// Index of a link / actuated joint by name; throws std::invalid_argument when unknown.
+  /// Index of a link / actuated joint by name; throws InputError when unknown.
   int link_index(const std::string& link_name) const;
   int joint_index(const std::string& joint_name) const;
   /// -1 when unknown.
@@ -140,7 +142,7 @@ struct RobotModel {
   /// q with its hand part replaced by the open pre-shape.
   Eigen::VectorXd open_hand(const Eigen::VectorXd& q) const;
   /// Joint values for `q` given as a shorter prefix: the rest from `home`. Throws
-  /// std::invalid_argument for too many values, NaN/Inf or values outside the limits (naming the
+  /// InputError for too many values, NaN/Inf or values outside the limits (naming the
   /// joint and its limits).
   Eigen::VectorXd complete_q(const std::vector<double>& prefix) const;
 };
@@ -150,7 +152,7 @@ std::vector<std::string> builtin_robots();
 
 /// Loads a robot: a built-in name (its URDF and hand description are embedded in the library,
 /// so it works from any directory) or the path of a hand-description YAML file, whose `urdf` key
-/// names the URDF file (relative to the YAML file's folder). Any problem -> std::invalid_argument
+/// names the URDF file (relative to the YAML file's folder). Any problem -> InputError
 /// with a one-line reason naming the file ("kr5.yaml: hand.curves[0]: unknown link 'x'").
 RobotModel load_robot(const std::string& name_or_path);
 

@@ -1,7 +1,7 @@
 // Internals of load_robot() (not installed): the steps that turn a hand description (YAML) and
 // its URDF into a RobotModel. urdf_tree.cpp reads the URDF's links, joints and collision shapes;
 // hand_description.cpp reads the YAML and checks it against the URDF; robot_model.cpp finds the
-// files. Every problem is a one-line std::invalid_argument naming the file.
+// files. Every problem is a one-line InputError naming the file.
 #pragma once
 
 #include <functional>
@@ -15,7 +15,7 @@
 
 namespace claspplan::robots::robot_model_detail {
 
-/// Throws std::invalid_argument "<file>: <what>".
+/// Throws InputError "<file>: <what>".
 [[noreturn]] void fail(const std::string& file, const std::string& what);
 
 /// The text on one line (newlines as spaces, no trailing spaces).

@@ -16,9 +16,9 @@ namespace claspplan::servo {
 
 using Points = std::vector<Eigen::Vector3d>;
 
-/// Thrown when two curves touch or cross (the linking integral is undefined there). It is an
-/// std::invalid_argument so that user-given intersecting curves are malformed input (exit 2);
-/// planner code that moves curves may catch it specifically.
+/// Thrown when two curves touch or cross (the linking integral is undefined there). Inside a run
+/// this is an internal failure (exit 3); callers whose curves are the user's own (`claspplan
+/// linking`) turn it into an InputError. Planner code that moves curves may catch it specifically.
 class CurvesIntersect : public std::invalid_argument {
  public:
   using std::invalid_argument::invalid_argument;

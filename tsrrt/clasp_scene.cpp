@@ -6,6 +6,7 @@
 #include <stdexcept>
 
 #include "perception/depth_surface.hpp"
+#include "perception/input_error.hpp"
 #include "tsrrt/clasp_planning.hpp"
 
 namespace claspplan::tsrrt {
@@ -64,9 +65,9 @@ void object_collision_mesh(const perception::ObjectModel& object, const percepti
     }
   }
   if (triangles.empty()) {
-    throw std::invalid_argument((name.empty() ? "" : name + ": ") +
-                                "the object has no surface to collide with (no depth surface "
-                                "and no K_d triangles: raise perception.d or the point count)");
+    throw InputError((name.empty() ? "" : name + ": ") +
+                     "the object has no surface to collide with (no depth surface "
+                     "and no K_d triangles: raise perception.d or the point count)");
   }
   loop_tube(loop.points, kLoopTubeRadius, vertices, triangles);
 }

@@ -4,6 +4,7 @@
 #include <stdexcept>
 #include <utility>
 
+#include "perception/input_error.hpp"
 #include "perception/mesh.hpp"
 #include "tsrrt/clasp_scene.hpp"
 
@@ -138,7 +139,7 @@ void run_search(ClaspPlanningOptions planning, const perception::Loop& loop,
 
 ClaspResult plan_clasp(const ClaspRequest& request) {
   const std::string prefix = request.name.empty() ? "" : request.name + ": ";
-  if (!request.robot) throw std::invalid_argument(prefix + "the request has no robot");
+  if (!request.robot) throw InputError(prefix + "the request has no robot");
   const robots::RobotModel& model = *request.robot;
   const Say say = [&](const std::string& m) {
     if (request.progress) request.progress(m);
@@ -183,11 +184,15 @@ ClaspResult plan_clasp(const ClaspRequest& request) {
   object_collision_mesh(r.object, loop, perception.workspace, request.name,
                         r.collision_mesh.vertices, r.collision_mesh.triangles);
   r.environment = request.environment;
+  for (const auto& b : r.environment) {
+    if (!b.pose.matrix().allFinite() || !b.size.allFinite() || (b.size.array() <= 0).any())
+      throw InputError(prefix + "an environment box has a non-finite pose or a size <= 0");
+  }
   robots::CollisionWorld world = make_collision_world(model, r);
   robots::CollisionReport contact;
   if (world.in_collision(r.start, &contact)) {
-    throw std::invalid_argument(prefix + "the start configuration is in collision (" +
-                                contact.first + " with " + contact.second + ")");
+    throw InputError(prefix + "the start configuration is in collision (" + contact.first +
+                     " with " + contact.second + ")");
   }
 
   servo::ClaspController controller(model, loop.points, r.targets, request.controller);

@@ -24,6 +24,7 @@
 
 #include <Eigen/Geometry>
 
+#include "perception/input_error.hpp"
 #include "perception/pipeline.hpp"
 #include "robots/collision_world.hpp"
 #include "robots/hand_size.hpp"
@@ -162,7 +163,7 @@ struct ClaspResult {
 };
 
 /// Runs the whole job. Returns kNoClaspableLoop / kNoClasp (with a reason) for a valid problem
-/// without an answer. Throws std::invalid_argument for malformed input: no robot, a bad start
+/// without an answer. Throws InputError for malformed input: no robot, a bad start
 /// configuration (outside the limits, or in collision), invalid object input or options, an
 /// object without a surface to collide with.
 ClaspResult plan_clasp(const ClaspRequest& request);

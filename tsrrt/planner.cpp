@@ -10,10 +10,6 @@
 
 namespace claspplan::tsrrt {
 
-double uniform01(std::uint64_t bits) {
-  return static_cast<double>(bits >> 11) * 0x1.0p-53;
-}
-
 namespace {
 
 using Clock = std::chrono::steady_clock;

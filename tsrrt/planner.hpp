@@ -8,6 +8,7 @@
 
 #include <Eigen/Core>
 
+#include "perception/random_draws.hpp"
 #include "tsrrt/problem.hpp"
 
 namespace claspplan::tsrrt {
@@ -89,9 +90,5 @@ PlanResult build_ts_rrt(PlanningProblem& problem, const Eigen::VectorXd& q_init,
 /// when that motion is collision-free. The first and last waypoints stay.
 std::vector<Eigen::VectorXd> prune_path(PlanningProblem& problem, std::vector<Eigen::VectorXd> path,
                                         int attempts, std::uint64_t seed);
-
-/// Uniform [0, 1) from the raw 64-bit stream, so plans are identical on every platform (the
-/// standard distributions are implementation-defined).
-double uniform01(std::uint64_t bits);
 
 }  // namespace claspplan::tsrrt
