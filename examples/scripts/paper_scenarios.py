@@ -29,7 +29,18 @@ def pre_expansions(obj, pose, hand):
         return 50 if hand == "dlr" else 100
     return 200
 
-START = "[0, -1.5707963, 1.5707963, 0, 1.5707963, 0]  # arm: HOME with the hand pointing down"
+HOME = "[0, -1.5707963, 1.5707963, 0, 1.5707963, 0]  # arm: HOME with the hand pointing down"
+# The larger hands touch the bags' handles (and the 20 cm table's bag) from HOME: for purse and bags
+# the hand starts higher and nearer the robot (tool0 at (0.31, 0, 0.82), pointing down); over the
+# obstructed chair's seat a little higher than HOME (tool0 at (0.42, 0, 0.76)).
+RAISED = "[0, -1.9, 1.5707963, 0, 1.9, 0]  # arm: the hand pointing down, above the object"
+OVER_SEAT = "[0, -1.7, 1.5707963, 0, 1.7, 0]  # arm: the hand pointing down over the seat"
+
+
+def start(obj, obstructed):
+    if obstructed:
+        return OVER_SEAT
+    return RAISED if obj in ("purse", "bag", "travelbag") else HOME
 DESCRIBE = {
     "purse": "a purse (30 x 14 x 18 cm box, round handle 2.4 cm thick, 1 loop)",
     "bag": "a shoulder bag (36 x 12 x 28 cm, one flat strap 1 x 3 cm, 1 loop)",
@@ -62,7 +73,7 @@ def scenario(scene, hand, depth_rel):
         "# files %s/." % depth_rel,
         "name: %s_%s" % (name, hand),
         "robot: kr5_%s" % hand,
-        "start: " + START,
+        "start: " + start(obj, obstructed),
         "object:",
         "  depth:",
     ]
