@@ -42,5 +42,6 @@ void add_robot_command(CLI::App& app, Action& action);
 void add_loops_command(CLI::App& app, Action& action);
 void add_run_command(CLI::App& app, Action& action);
 void add_verify_command(CLI::App& app, Action& action);
+void add_render_paper_command(CLI::App& app, Action& action);
 
 }  // namespace claspplan::cli

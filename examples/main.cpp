@@ -28,6 +28,7 @@ int main(int argc, char** argv) {
   add_loops_command(app, action);
   add_run_command(app, action);
   add_verify_command(app, action);
+  add_render_paper_command(app, action);
 
   const bool json = wants_json(argc, argv);
   try {

@@ -9,6 +9,7 @@
 #include <yaml-cpp/yaml.h>
 
 #include "examples/objects.hpp"
+#include "examples/paper_objects.hpp"
 #include "examples/scene_render.hpp"
 #include "perception/camera.hpp"
 #include "perception/file_io.hpp"
@@ -225,11 +226,17 @@ void read_object(const Reader& r, const fs::path& dir, ObjectSpec& o) {
             "handle_tube", "height", "wall", "handle_height"});
     ShapeSpec shape;
     shape.type = s.text("type");
-    const std::set<std::string> known = {"torus", "purse", "sphere", "holed_plate", "container"};
+    const std::set<std::string> known = {"torus",       "purse",     "sphere",
+                                         "holed_plate", "container", "bag",
+                                         "travelbag",   "lawnmower", "chair"};
     if (!known.count(shape.type)) {
-      s.fail("type",
-             "unknown shape '" + shape.type + "' (torus, purse, sphere, holed_plate, container)");
+      s.fail("type", "unknown shape '" + shape.type +
+                         "' (torus, purse, sphere, holed_plate, container, bag, travelbag, "
+                         "lawnmower, chair)");
     }
+    const std::set<std::string> fixed = {"bag", "travelbag", "lawnmower", "chair"};
+    if (fixed.count(shape.type) && s.has("type") && r["shape"].size() > 1)
+      s.fail("type", "the paper objects (bag, travelbag, lawnmower, chair) take no parameters");
     if (shape.type == "container")
       read_container_parameters(s, shape.container);
     else
@@ -444,7 +451,9 @@ perception::PerceptionInputs build_inputs(const Scenario& s) {
     mesh = objects::sphere_mesh(o.shape->radius);
   } else if (o.shape->type == "container") {
     mesh = objects::container(o.shape->container);
-  } else {
+  } else if (o.shape->type != "holed_plate") {
+    mesh = objects::paper_object(o.shape->type).mesh;
+  } else {  // holed_plate
     objects::HoledPlate plate;
     plate.holes = o.shape->holes;
     mesh = objects::holed_plate(plate);
@@ -456,13 +465,7 @@ perception::PerceptionInputs build_inputs(const Scenario& s) {
     return in;
   }
   // What a depth camera sees: the object and the environment.
-  for (const auto& b : s.boxes) {
-    const RenderMesh box = box_mesh(b.size);
-    perception::TriangleMesh m;
-    m.vertices = box.vertices;
-    for (const auto& t : box.triangles) m.triangles.push_back({t[0], t[1], t[2]});
-    perception::append_mesh(mesh, perception::transformed(m, b.pose));
-  }
+  perception::append_mesh(mesh, boxes_mesh(s.boxes));
   for (std::size_t i = 0; i < o.cameras.size(); ++i) {
     perception::DepthView view;
     view.camera = objects::kinect_camera(o.cameras[i].first, o.cameras[i].second);
@@ -486,6 +489,18 @@ Scenario load_scenario_text(const std::string& text, const std::string& path,
       throw InputError(path + ": " + e.msg + " (line " + std::to_string(e.mark.line + 1) + ")");
     }
   });
+}
+
+perception::TriangleMesh boxes_mesh(const std::vector<EnvironmentBox>& boxes) {
+  perception::TriangleMesh out;
+  for (const auto& b : boxes) {
+    const RenderMesh box = box_mesh(b.size);
+    perception::TriangleMesh m;
+    m.vertices = box.vertices;
+    for (const auto& t : box.triangles) m.triangles.push_back({t[0], t[1], t[2]});
+    perception::append_mesh(out, perception::transformed(m, b.pose));
+  }
+  return out;
 }
 
 perception::PerceptionInputs scenario_inputs(const Scenario& s) {

@@ -24,7 +24,9 @@ namespace claspplan::cli {
 
 /// A procedural object of examples/objects.hpp with its parameters.
 struct ShapeSpec {
-  std::string type;  ///< torus, purse, sphere, holed_plate, container
+  /// torus, purse, sphere, holed_plate, container, or a paper object without parameters (bag,
+  /// travelbag, lawnmower, chair: examples/paper_objects.hpp)
+  std::string type;
   double major_radius = 0.1, minor_radius = 0.012;  ///< torus
   double radius = 0.1;                              ///< sphere
   int holes = 2;                                    ///< holed_plate
@@ -81,6 +83,9 @@ Scenario load_scenario(const std::string& path);
 /// The same from a scenario's text; `path` names it in messages, `base_dir` resolves its paths.
 Scenario load_scenario_text(const std::string& text, const std::string& path,
                             const std::string& base_dir);
+
+/// The boxes as one triangle mesh (what depth cameras see of the environment).
+perception::TriangleMesh boxes_mesh(const std::vector<EnvironmentBox>& boxes);
 
 /// Builds the perception inputs the scenario's object describes (files read, shapes meshed,
 /// synthetic depth images rendered).

@@ -366,8 +366,9 @@ TEST(Demo, RunsTheEmbeddedScenarioToAVerifiedClasp) {
   const CliResult r = run_cli({"demo", "--out", dir.file("demo"), "--json"});
   ASSERT_EQ(r.exit_code, 0) << r.out << r.err;
   EXPECT_TRUE(r.json()["verified"].get<bool>());
-  for (const char* file : {"result.json", "timing.json", "clasp_front.png", "clasp_side.png",
-                           "tree.png", "poses.png", "depth_0.png", "depth_0.yaml"}) {
+  for (const char* file :
+       {"result.json", "timing.json", "clasp_front.png", "clasp_side.png", "tree.png", "poses.png",
+        "input/depth/bag_2/view_0.png", "input/depth/bag_2/view_1.yaml"}) {
     EXPECT_TRUE(std::filesystem::exists(dir.file(std::string("demo/") + file))) << file;
   }
 }
