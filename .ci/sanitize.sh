@@ -20,5 +20,8 @@ export LSAN_OPTIONS="suppressions=$PWD/.ci/lsan.supp"  # leaks inside Debian lib
 #   sanitized binary is several times slower and runs out of time (on a loaded machine even the
 #   normal build's Demo does). The same planning, closing and verification code runs sanitized
 #   in PlannedClasp.*, which is bounded by cycles.
-ctest --test-dir build-asan --output-on-failure -j2 -E '^(Package|Demo|PlannedPurse)\.'
+# - Planner.UnreachableLoopIsExitOneWithAReason expects its 30 cycles to end the search, but
+#   sanitized, the default 10 s limit ends it first (measured: 84 attempts, "within the time limit").
+ctest --test-dir build-asan --output-on-failure -j2 \
+  -E '^(Package|Demo|PlannedPurse)\.|^Planner\.UnreachableLoopIsExitOneWithAReason$'
 echo "sanitize: built and tested in ${SECONDS} s"
