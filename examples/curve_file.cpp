@@ -4,12 +4,23 @@
 #include "perception/input_error.hpp"
 
 namespace claspplan::cli {
+namespace {
 
-servo::Points read_curve_file(const std::string& path, bool closed) {
-  servo::Points points = perception::read_xyz(path);  // x y z per line, '#' comments, validated
+servo::Points checked_curve(servo::Points points, const std::string& path, bool closed) {
   if (closed && points.size() > 1 && points.front() == points.back()) points.pop_back();
   as_input_error([&] { servo::validate_curve(points, closed, path); });
   return points;
+}
+
+}  // namespace
+
+servo::Points read_curve_file(const std::string& path, bool closed) {
+  // x y z per line, '#' comments, validated
+  return checked_curve(perception::read_xyz(path), path, closed);
+}
+
+servo::Points parse_curve_text(const std::string& text, const std::string& name, bool closed) {
+  return checked_curve(perception::parse_xyz(text, name), name, closed);
 }
 
 }  // namespace claspplan::cli

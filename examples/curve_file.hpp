@@ -14,5 +14,7 @@ namespace claspplan::cli {
 /// file name and line for missing files, malformed lines, NaN/Inf, too few points or zero-length
 /// segments.
 servo::Points read_curve_file(const std::string& path, bool closed);
+/// The same from the file's text; `name` stands for the path in messages.
+servo::Points parse_curve_text(const std::string& text, const std::string& name, bool closed);
 
 }  // namespace claspplan::cli

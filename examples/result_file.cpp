@@ -14,11 +14,9 @@ namespace {
 // Typed access to result.json, naming the file and key in every error.
 class ResultReader {
  public:
-  explicit ResultReader(const std::string& path) : path_(path) {
-    std::ifstream in(path);
-    if (!in) throw InputError(path + ": cannot open result file");
+  ResultReader(const std::string& text, const std::string& path) : path_(path) {
     try {
-      j_ = nlohmann::json::parse(in);
+      j_ = nlohmann::json::parse(text);
     } catch (const nlohmann::json::exception& e) {
       throw InputError(path + ": not valid JSON (" + std::string(e.what()) + ")");
     }
@@ -115,7 +113,14 @@ void read_path(const ResultReader& r, ResultFile& out) {
 }  // namespace
 
 ResultFile read_result_file(const std::string& path, bool with_path) {
-  const ResultReader r(path);
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw InputError(path + ": cannot open result file");
+  const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  return parse_result_file(text, path, with_path);
+}
+
+ResultFile parse_result_file(const std::string& text, const std::string& path, bool with_path) {
+  const ResultReader r(text, path);
   ResultFile out;
   if (!r.at("robot").is_string()) r.fail("robot", "expected a robot name or path");
   out.robot = r.at("robot").get<std::string>();

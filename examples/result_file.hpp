@@ -33,5 +33,8 @@ struct ResultFile {
 
 /// Reads the file (and loads its robot). with_path: also the environment and the waypoints.
 ResultFile read_result_file(const std::string& path, bool with_path = false);
+/// The same from the file's text; `name` stands for the path in messages.
+ResultFile parse_result_file(const std::string& text, const std::string& name,
+                             bool with_path = false);
 
 }  // namespace claspplan::cli

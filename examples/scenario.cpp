@@ -36,7 +36,8 @@ class Reader {
     if (!node_ || !node_.IsMap()) return;
     const std::set<std::string> ok(allowed.begin(), allowed.end());
     for (const auto& kv : node_) {
-      const std::string key = kv.first.as<std::string>();
+      if (!kv.first.IsScalar()) fail("", "a key must be a name, not a list or map");
+      const std::string key = kv.first.Scalar();
       if (!ok.count(key)) fail(key, "unknown key");
     }
   }
@@ -294,15 +295,8 @@ Scenario load_scenario(const std::string& path) {
 
 namespace {
 
-Scenario parse_scenario(const std::string& text, const std::string& path,
-                        const std::string& base_dir) {
-  YAML::Node root;
-  try {
-    root = YAML::Load(text);
-  } catch (const YAML::Exception& e) {
-    throw InputError(path + ": malformed YAML: " + e.msg + " (line " +
-                     std::to_string(e.mark.line + 1) + ")");
-  }
+Scenario read_scenario(const YAML::Node& root, const std::string& path,
+                       const std::string& base_dir) {
   if (!root.IsMap()) throw InputError(path + ": a scenario is a YAML map");
   const Reader r(root, path);
   r.only({"name", "robot", "start", "object", "environment", "clasp", "seed", "perception",
@@ -484,9 +478,11 @@ Scenario load_scenario_text(const std::string& text, const std::string& path,
   // Whatever check the scenario fails, in the robot's or a file's reader too, is about the input.
   return as_input_error([&] {
     try {
-      return parse_scenario(text, path, base_dir);
-    } catch (const YAML::Exception& e) {  // a value of the wrong YAML type
-      throw InputError(path + ": " + e.msg + " (line " + std::to_string(e.mark.line + 1) + ")");
+      // yaml-cpp's own errors too (a conversion the Reader did not foresee) are the file's fault.
+      return read_scenario(YAML::Load(text), path, base_dir);
+    } catch (const YAML::Exception& e) {
+      throw InputError(path + ": malformed YAML: " + e.msg + " (line " +
+                       std::to_string(e.mark.line + 1) + ")");
     }
   });
 }

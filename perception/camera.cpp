@@ -64,11 +64,26 @@ void validate_camera(const CameraModel& c, const std::string& what) {
   require(R.determinant() > 0, what, "T_world_camera's rotation is a reflection (det < 0)");
 }
 
+namespace {
+
+// A small text file (a camera or a depth image), whole; fails when missing or unreadable.
+std::string read_file(const std::string& path, const std::string& missing) {
+  if (!std::filesystem::is_regular_file(path)) throw InputError(path + ": " + missing);
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw InputError(path + ": " + missing);
+  return std::string((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+}
+
+}  // namespace
+
 CameraModel read_camera_yaml(const std::string& path) {
-  if (!std::filesystem::is_regular_file(path)) throw InputError(path + ": camera file not found");
+  return parse_camera_yaml(read_file(path, "camera file not found"), path);
+}
+
+CameraModel parse_camera_yaml(const std::string& text, const std::string& path) {
   YAML::Node root;
   try {
-    root = YAML::LoadFile(path);
+    root = YAML::Load(text);
   } catch (const YAML::Exception& e) {
     std::string msg = e.what();
     for (char& ch : msg)
@@ -197,9 +212,7 @@ std::uint32_t crc32(const unsigned char* p, size_t n, std::uint32_t crc = 0xffff
 // Walks the PNG's chunks (lengths, CRCs, IHDR first, IEND last) before libpng sees the file, so
 // that truncated or corrupt files and non-16-bit-grey images get a clear one-line reason (libpng
 // would print its own messages on stderr).
-void check_png_chunks(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  const std::string data((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+void check_png_chunks(const std::string& data, const std::string& path, const CameraModel& camera) {
   const auto* b = reinterpret_cast<const unsigned char*>(data.data());
   auto be32 = [&](size_t at) {
     return std::uint32_t(b[at]) << 24 | std::uint32_t(b[at + 1]) << 16 |
@@ -224,6 +237,13 @@ void check_png_chunks(const std::string& path) {
         throw InputError(path + ": depth must be a 16-bit single-channel PNG, got " +
                          std::to_string(bit_depth) + "-bit " + (colour == 0 ? "grey" : "colour") +
                          " (PNG colour type " + std::to_string(colour) + ")");
+      // Before decoding, so that a forged size never allocates the image.
+      const std::uint32_t width = be32(at + 8), height = be32(at + 12);
+      if (width != static_cast<std::uint32_t>(camera.width) ||
+          height != static_cast<std::uint32_t>(camera.height))
+        throw InputError(path + ": image is " + std::to_string(width) + "x" +
+                         std::to_string(height) + " but the camera is " +
+                         std::to_string(camera.width) + "x" + std::to_string(camera.height));
       first = false;
     }
     at += 12 + len;
@@ -234,15 +254,17 @@ void check_png_chunks(const std::string& path) {
 }  // namespace
 
 DepthImage read_depth_png(const std::string& path, const CameraModel& camera) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw InputError(path + ": depth image not found or unreadable");
-  unsigned char magic[8] = {0};
-  in.read(reinterpret_cast<char*>(magic), 8);
+  return decode_depth_png(read_file(path, "depth image not found or unreadable"), camera, path);
+}
+
+DepthImage decode_depth_png(const std::string& data, const CameraModel& camera,
+                            const std::string& path) {
   static const unsigned char kPng[8] = {0x89, 'P', 'N', 'G', '\r', '\n', 0x1a, '\n'};
-  if (in.gcount() < 8 || std::memcmp(magic, kPng, 8) != 0)
+  if (data.size() < 8 || std::memcmp(data.data(), kPng, 8) != 0)
     throw InputError(path + ": not a PNG file");
-  check_png_chunks(path);
-  const Gray16Image img = read_png_gray16(path);
+  if (data.size() > (1u << 30)) throw InputError(path + ": larger than 1 GB");
+  check_png_chunks(data, path, camera);
+  const Gray16Image img = decode_png_gray16(data, path);
   if (img.width != camera.width || img.height != camera.height)
     throw InputError(path + ": image is " + std::to_string(img.width) + "x" +
                      std::to_string(img.height) + " but the camera is " +

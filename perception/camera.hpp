@@ -43,6 +43,8 @@ void validate_camera(const CameraModel& camera, const std::string& what);
 
 /// Reads and validates a camera file (format above).
 CameraModel read_camera_yaml(const std::string& path);
+/// The same from the file's text; `name` stands for the path in messages.
+CameraModel parse_camera_yaml(const std::string& text, const std::string& name);
 void write_camera_yaml(const CameraModel& camera, const std::string& path);
 
 /// A camera at `position` looking at `target`, image "up" towards world +z (or +x when looking
@@ -74,6 +76,9 @@ struct DepthView {
 /// camera. Throws InputError for missing, non-PNG, truncated, 8-bit or colour files.
 /// An all-zero image is read (it is the pipeline that rejects an empty cloud).
 DepthImage read_depth_png(const std::string& path, const CameraModel& camera);
+/// The same from the file's bytes; `name` stands for the path in messages.
+DepthImage decode_depth_png(const std::string& data, const CameraModel& camera,
+                            const std::string& name);
 /// Writes depth / depth_scale rounded to 16 bits; depths beyond 65535 units become 0.
 void write_depth_png(const DepthImage& image, const CameraModel& camera, const std::string& path);
 

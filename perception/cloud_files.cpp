@@ -126,13 +126,16 @@ void check_pcd_header(const std::string& path, PcdHeader& h) {
       h.counts.size() != h.fields.size())
     fail(path, "PCD header: FIELDS, SIZE, TYPE and COUNT have different lengths");
   if (h.width < 0 && h.points < 0) fail(path, "PCD header has neither WIDTH nor POINTS");
-  if (h.width < 0) h.width = h.points;
-  if (h.points < 0) h.points = h.width * h.height;
-  if (h.width < 0 || h.height < 1 || h.points < 0 || h.points > kMaxCount || h.width > kMaxCount ||
-      h.height > kMaxCount)
+  const auto absurd = [&] {
     fail(path, "PCD header declares an absurd size (WIDTH " + std::to_string(h.width) +
                    ", HEIGHT " + std::to_string(h.height) + ", POINTS " + std::to_string(h.points) +
                    ")");
+  };
+  // The sizes are bounded before they are multiplied.
+  if (h.width > kMaxCount || h.height < 1 || h.height > kMaxCount || h.points > kMaxCount) absurd();
+  if (h.width < 0) h.width = h.points;
+  if (h.points < 0) h.points = h.width * h.height;
+  if (h.width < 0 || h.points < 0 || h.points > kMaxCount) absurd();
   if (h.width * h.height != h.points)
     fail(path, "PCD header: WIDTH x HEIGHT = " + std::to_string(h.width * h.height) +
                    " but POINTS = " + std::to_string(h.points));
@@ -240,7 +243,11 @@ void read_pcd_compressed(const std::string& path, const std::string& data, const
 }  // namespace
 
 PointCloud read_pcd(const std::string& path) {
-  const std::string data = read_all(path);
+  return parse_pcd(read_all(path), path);
+}
+
+PointCloud parse_pcd(const std::string& data, const std::string& path) {
+  require_data(path, data);
   PcdHeader h = read_pcd_header(path, data);
   check_pcd_header(path, h);
   const PcdLayout layout = pcd_layout(path, h);
@@ -269,7 +276,11 @@ PointCloud read_pcd(const std::string& path) {
 // XYZ
 
 PointCloud read_xyz(const std::string& path) {
-  const std::string data = read_all(path);
+  return parse_xyz(read_all(path), path);
+}
+
+PointCloud parse_xyz(const std::string& data, const std::string& path) {
+  require_data(path, data);
   Lines lines(data);
   std::string line;
   PointCloud cloud;

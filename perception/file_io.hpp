@@ -44,6 +44,16 @@ TriangleMesh read_obj(const std::string& path);
 TriangleMesh read_stl(const std::string& path);
 TriangleMesh read_off(const std::string& path);
 
+/// The same readers on a file's contents held in memory: `name` stands for the path in messages
+/// (and gives parse_geometry the format by its extension). Same checks, same errors.
+GeometryFile parse_geometry(const std::string& data, const std::string& name);
+PointCloud parse_pcd(const std::string& data, const std::string& name);
+PointCloud parse_xyz(const std::string& data, const std::string& name);
+GeometryFile parse_ply(const std::string& data, const std::string& name);
+TriangleMesh parse_obj(const std::string& data, const std::string& name);
+TriangleMesh parse_stl(const std::string& data, const std::string& name);
+TriangleMesh parse_off(const std::string& data, const std::string& name);
+
 /// Writers (full double precision in text formats; binary ones store float32 for .pcd/.stl and
 /// float64 for .ply). Throw std::runtime_error when the file cannot be written.
 void write_pcd(const PointCloud& cloud, const std::string& path, bool binary = true);

@@ -21,9 +21,11 @@ std::string read_all(const std::string& path) {
   if (!std::filesystem::is_regular_file(path, ec)) fail(path, "not a regular file");
   std::ifstream in(path, std::ios::binary);
   if (!in) fail(path, "cannot open the file");
-  std::string data((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  return std::string((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+}
+
+void require_data(const std::string& path, const std::string& data) {
   if (data.empty()) fail(path, "empty file");
-  return data;
 }
 
 std::string lower(std::string s) {

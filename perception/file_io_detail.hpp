@@ -18,8 +18,11 @@ constexpr long long kMaxCount = 50'000'000;
 /// Throws InputError "<path>: <message>".
 [[noreturn]] void fail(const std::string& path, const std::string& message);
 
-/// The whole file; fails when it is missing, not a regular file, unreadable or empty.
+/// The whole file; fails when it is missing, not a regular file or unreadable.
 std::string read_all(const std::string& path);
+
+/// Fails when a file's contents are empty (every parser starts with it).
+void require_data(const std::string& path, const std::string& data);
 
 std::string lower(std::string s);
 

@@ -15,7 +15,11 @@ using namespace file_io_detail;
 // OBJ, OFF, STL
 
 TriangleMesh read_obj(const std::string& path) {
-  const std::string data = read_all(path);
+  return parse_obj(read_all(path), path);
+}
+
+TriangleMesh parse_obj(const std::string& data, const std::string& path) {
+  require_data(path, data);
   Lines lines(data);
   std::string line;
   TriangleMesh mesh;
@@ -55,7 +59,11 @@ TriangleMesh read_obj(const std::string& path) {
 }
 
 TriangleMesh read_off(const std::string& path) {
-  const std::string data = read_all(path);
+  return parse_off(read_all(path), path);
+}
+
+TriangleMesh parse_off(const std::string& data, const std::string& path) {
+  require_data(path, data);
   Lines lines(data);
   std::string line;
   std::vector<std::string> header;
@@ -100,7 +108,7 @@ TriangleMesh read_off(const std::string& path) {
     if (!next_tokens(tok))
       fail(path, "truncated: " + std::to_string(i) + " of " + std::to_string(nf) + " faces");
     long long n;
-    if (!parse_integer(tok[0], n) || n < 3 || n + 1 > static_cast<long long>(tok.size()))
+    if (!parse_integer(tok[0], n) || n < 3 || n >= static_cast<long long>(tok.size()))
       fail(path, "face " + std::to_string(i) + " is malformed");
     poly.clear();
     for (long long k = 0; k < n; ++k) {
@@ -115,7 +123,11 @@ TriangleMesh read_off(const std::string& path) {
 }
 
 TriangleMesh read_stl(const std::string& path) {
-  const std::string data = read_all(path);
+  return parse_stl(read_all(path), path);
+}
+
+TriangleMesh parse_stl(const std::string& data, const std::string& path) {
+  require_data(path, data);
   std::vector<Eigen::Vector3d> corners;
   bool binary = false;
   if (data.size() >= 84) {
@@ -151,6 +163,8 @@ TriangleMesh read_stl(const std::string& path) {
       if (tok == "facet") {
         open_facet = true;
       } else if (tok == "loop") {
+        // Every loop closed before the next: the corners come in threes.
+        if (in_loop >= 0) fail(path, "'outer loop' inside a loop (no 'endloop')");
         in_loop = 0;
       } else if (tok == "vertex") {
         if (in_loop < 0) fail(path, "'vertex' outside an 'outer loop'");

@@ -83,6 +83,13 @@ double decode(const unsigned char* p, int size, char kind, bool big_endian) {
   }
 }
 
+// A vertex index read from a face list, before fan() checks it against the vertex count: any
+// number, so a huge, infinite or NaN value is refused before it is converted.
+long long list_index(double v, const std::string& path, const std::string& element) {
+  if (!(std::abs(v) < 1e15)) fail(path, "bad vertex index in element '" + element + "'");
+  return static_cast<long long>(v);
+}
+
 // The header of a PLY file.
 struct PlyHeader {
   std::string format;
@@ -232,7 +239,7 @@ void read_ply_binary(const std::string& path, const std::string& data, const Ply
           poly.clear();
           for (long long j = 0; j < static_cast<long long>(n); ++j)
             poly.push_back(
-                static_cast<long long>(decode(p + j * prop.type, prop.type, prop.kind, be)));
+                list_index(decode(p + j * prop.type, prop.type, prop.kind, be), path, e.name));
           fan(out.triangles, poly, g.vertex->count, path, i);
         }
         p += static_cast<long long>(n) * prop.type;
@@ -272,7 +279,7 @@ void read_ply_ascii(const std::string& path, const std::string& data, const PlyH
         if (n < 0 || n > 1e6 || n != std::floor(n)) fail(path, "bad list size in '" + e.name + "'");
         poly.clear();
         for (long long j = 0; j < static_cast<long long>(n); ++j)
-          poly.push_back(static_cast<long long>(number(e.name)));
+          poly.push_back(list_index(number(e.name), path, e.name));
         if (&e == g.face && static_cast<int>(k) == g.face_prop)
           fan(out.triangles, poly, g.vertex->count, path, i);
         values.push_back(0.0);
@@ -289,7 +296,11 @@ void read_ply_ascii(const std::string& path, const std::string& data, const PlyH
 }  // namespace
 
 GeometryFile read_ply(const std::string& path) {
-  const std::string data = read_all(path);
+  return parse_ply(read_all(path), path);
+}
+
+GeometryFile parse_ply(const std::string& data, const std::string& path) {
+  require_data(path, data);
   const PlyHeader h = read_ply_header(path, data);
   const PlyGeometry g = find_ply_geometry(path, h);
   check_ply_counts(path, data, h);

@@ -15,11 +15,16 @@ std::string message(const png_image& image) {
   return image.message[0] != '\0' ? std::string(image.message) : std::string("libpng error");
 }
 
+png_image fresh_image() {
+  png_image image;
+  std::memset(&image, 0, sizeof image);
+  image.version = PNG_IMAGE_VERSION;
+  return image;
+}
+
 void write_file(const std::string& path, int width, int height, png_uint_32 format,
                 const void* pixels, png_int_32 row_stride) {
-  png_image png;
-  std::memset(&png, 0, sizeof png);
-  png.version = PNG_IMAGE_VERSION;
+  png_image png = fresh_image();
   png.width = static_cast<png_uint_32>(width);
   png.height = static_cast<png_uint_32>(height);
   png.format = format;
@@ -28,15 +33,8 @@ void write_file(const std::string& path, int width, int height, png_uint_32 form
   }
 }
 
-}  // namespace
-
-Gray16Image read_png_gray16(const std::string& path) {
-  png_image image;
-  std::memset(&image, 0, sizeof image);
-  image.version = PNG_IMAGE_VERSION;
-  if (!png_image_begin_read_from_file(&image, path.c_str())) {
-    throw InputError(path + ": cannot decode the PNG (" + message(image) + ")");
-  }
+// The header read (from a file or from memory) is finished into a 16-bit grey image.
+Gray16Image finish_gray16(png_image& image, const std::string& path) {
   // Only a file that is 16-bit grey already (no colour, no alpha, no palette) is a depth image.
   if (image.format != PNG_FORMAT_LINEAR_Y) {
     png_image_free(&image);
@@ -50,6 +48,24 @@ Gray16Image read_png_gray16(const std::string& path) {
     throw InputError(path + ": cannot decode the PNG (" + message(image) + ")");
   }
   return out;
+}
+
+}  // namespace
+
+Gray16Image read_png_gray16(const std::string& path) {
+  png_image image = fresh_image();
+  if (!png_image_begin_read_from_file(&image, path.c_str())) {
+    throw InputError(path + ": cannot decode the PNG (" + message(image) + ")");
+  }
+  return finish_gray16(image, path);
+}
+
+Gray16Image decode_png_gray16(const std::string& data, const std::string& path) {
+  png_image image = fresh_image();
+  if (!png_image_begin_read_from_memory(&image, data.data(), data.size())) {
+    throw InputError(path + ": cannot decode the PNG (" + message(image) + ")");
+  }
+  return finish_gray16(image, path);
 }
 
 void write_png_gray16(const std::string& path, const Gray16Image& image) {

@@ -20,6 +20,9 @@ struct Gray16Image {
 /// one-line reason for anything else.
 Gray16Image read_png_gray16(const std::string& path);
 
+/// The same from the bytes of a PNG file (`path` only names it in messages).
+Gray16Image decode_png_gray16(const std::string& data, const std::string& path);
+
 /// Writes a 16-bit single-channel PNG. Throws std::runtime_error when the file cannot be written.
 void write_png_gray16(const std::string& path, const Gray16Image& image);
 
