@@ -285,8 +285,7 @@ PointCloud parse_xyz(const std::string& data, const std::string& path) {
   std::string line;
   PointCloud cloud;
   while (lines.next(line)) {
-    const size_t hash = line.find('#');
-    if (hash != std::string::npos) line.resize(hash);
+    strip_comment(line);
     const auto tok = split(line, true);
     if (tok.empty()) continue;
     if (tok.size() < 3)

@@ -41,6 +41,11 @@ bool is_space(char c) {
   return c == ' ' || c == '\t' || c == '\r' || c == '\n' || c == '\f' || c == '\v';
 }
 
+void strip_comment(std::string& line) {
+  const size_t hash = line.find('#');
+  if (hash != std::string::npos) line.resize(hash);
+}
+
 // Splits a line into whitespace- (and optionally comma-) separated tokens.
 std::vector<std::string> split(const std::string& line, bool commas) {
   std::vector<std::string> out;

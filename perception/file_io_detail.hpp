@@ -34,6 +34,9 @@ bool is_space(char c);
 // Splits a line into whitespace- (and optionally comma-) separated tokens.
 std::vector<std::string> split(const std::string& line, bool commas = false);
 
+// Cuts a '#' comment off a line (OBJ, OFF and XYZ files).
+void strip_comment(std::string& line);
+
 bool parse_double(const std::string& token, double& value);
 bool parse_integer(const std::string& token, long long& value);
 

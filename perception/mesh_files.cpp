@@ -26,8 +26,7 @@ TriangleMesh parse_obj(const std::string& data, const std::string& path) {
   std::vector<long long> poly;
   long long faces = 0;
   while (lines.next(line)) {
-    const size_t hash = line.find('#');
-    if (hash != std::string::npos) line.resize(hash);
+    strip_comment(line);
     const auto tok = split(line);
     if (tok.empty()) continue;
     const std::string where = "line " + std::to_string(lines.number());
@@ -69,8 +68,7 @@ TriangleMesh parse_off(const std::string& data, const std::string& path) {
   std::vector<std::string> header;
   auto next_tokens = [&](std::vector<std::string>& tok) {
     while (lines.next(line)) {
-      const size_t hash = line.find('#');
-      if (hash != std::string::npos) line.resize(hash);
+      strip_comment(line);
       tok = split(line);
       if (!tok.empty()) return true;
     }

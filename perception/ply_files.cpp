@@ -44,42 +44,28 @@ bool ply_type(const std::string& t, int& size, char& kind) {
   return true;
 }
 
+// The value of type T in the first sizeof(T) bytes of b.
+template <typename T>
+T load(const unsigned char* b) {
+  T v;
+  std::memcpy(&v, b, sizeof v);
+  return v;
+}
+
 double decode(const unsigned char* p, int size, char kind, bool big_endian) {
   unsigned char b[8];
   for (int i = 0; i < size; ++i) b[i] = big_endian ? p[size - 1 - i] : p[i];
   switch (kind) {
     case 'f':
-      if (size == 4) {
-        float f;
-        std::memcpy(&f, b, 4);
-        return f;
-      } else {
-        double d;
-        std::memcpy(&d, b, 8);
-        return d;
-      }
+      return size == 4 ? load<float>(b) : load<double>(b);
     case 'i':
-      if (size == 1) return static_cast<std::int8_t>(b[0]);
-      if (size == 2) {
-        std::int16_t v;
-        std::memcpy(&v, b, 2);
-        return v;
-      } else {
-        std::int32_t v;
-        std::memcpy(&v, b, 4);
-        return v;
-      }
+      return size == 1   ? load<std::int8_t>(b)
+             : size == 2 ? load<std::int16_t>(b)
+                         : load<std::int32_t>(b);
     default:
-      if (size == 1) return b[0];
-      if (size == 2) {
-        std::uint16_t v;
-        std::memcpy(&v, b, 2);
-        return v;
-      } else {
-        std::uint32_t v;
-        std::memcpy(&v, b, 4);
-        return v;
-      }
+      return size == 1   ? load<std::uint8_t>(b)
+             : size == 2 ? load<std::uint16_t>(b)
+                         : load<std::uint32_t>(b);
   }
 }
 
