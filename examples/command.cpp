@@ -17,9 +17,7 @@ void progress(const std::string& message) {
 
 // One line on stderr and, with --json, one object on stdout, so scripts always get JSON.
 int report_failure(int code, const std::string& reason, bool json) {
-  std::string line = reason;
-  for (char& c : line)
-    if (c == '\n' || c == '\r') c = ' ';
+  const std::string line = one_line(reason);
   std::cerr << "claspplan: error: " << line << "\n";
   if (json) print_json({{"error", line}, {"exit_code", code}});
   return code;

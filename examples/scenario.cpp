@@ -6,116 +6,53 @@
 #include <set>
 #include <sstream>
 
-#include <yaml-cpp/yaml.h>
-
 #include "examples/objects.hpp"
 #include "examples/paper_objects.hpp"
 #include "examples/scene_render.hpp"
 #include "perception/camera.hpp"
 #include "perception/file_io.hpp"
 #include "perception/input_error.hpp"
+#include "perception/yaml_field.hpp"
 
 namespace claspplan::cli {
 namespace {
 
 namespace fs = std::filesystem;
 
-// Reads typed values from a YAML map, naming the file and key in every error.
+// Optional keys of a scenario section, each with its default; an absent section reads as all
+// defaults. Values are typed and checked by YamlField, which names the file, line and key.
 class Reader {
  public:
-  Reader(const YAML::Node& node, std::string where) : node_(node), where_(std::move(where)) {
-    if (node_ && !node_.IsNull() && !node_.IsMap()) fail("", "expected a map of keys");
+  explicit Reader(YamlField field) : f_(std::move(field)) {
+    if (f_.present() && !f_.is_map()) f_.fail("expected a map of keys");
   }
 
   [[noreturn]] void fail(const std::string& key, const std::string& what) const {
-    throw InputError(where_ + (key.empty() ? "" : "." + key) + ": " + what);
+    (key.empty() ? f_ : f_[key]).fail(what);
   }
-
-  /// Rejects keys outside `allowed` (catches typos that would silently fall back to defaults).
-  void only(std::initializer_list<const char*> allowed) const {
-    if (!node_ || !node_.IsMap()) return;
-    const std::set<std::string> ok(allowed.begin(), allowed.end());
-    for (const auto& kv : node_) {
-      if (!kv.first.IsScalar()) fail("", "a key must be a name, not a list or map");
-      const std::string key = kv.first.Scalar();
-      if (!ok.count(key)) fail(key, "unknown key");
-    }
-  }
-
-  bool has(const std::string& key) const { return node_ && node_.IsMap() && node_[key]; }
-  YAML::Node operator[](const std::string& key) const { return node_[key]; }
-  Reader child(const std::string& key) const { return Reader(node_[key], where_ + "." + key); }
+  void only(std::initializer_list<const char*> allowed) const { f_.only(allowed); }
+  bool has(const std::string& key) const { return f_.has(key); }
+  const YamlField& field() const { return f_; }
+  Reader child(const std::string& key) const { return Reader(f_[key]); }
 
   double number(const std::string& key, double fallback, double lo = -INFINITY,
                 double hi = INFINITY) const {
-    if (!has(key)) return fallback;
-    double v = 0.0;
-    try {
-      v = node_[key].as<double>();
-    } catch (const YAML::Exception&) {
-      fail(key, "expected a number");
-    }
-    if (!std::isfinite(v) || v < lo || v > hi) {
-      fail(key, "must be a finite number in [" + std::to_string(lo) + ", " + std::to_string(hi) +
-                    "], got " + node_[key].as<std::string>());
-    }
-    return v;
+    return has(key) ? f_[key].number(lo, hi) : fallback;
   }
-
   int integer(const std::string& key, int fallback, int lo, int hi) const {
-    if (!has(key)) return fallback;
-    long long v = 0;
-    try {
-      v = node_[key].as<long long>();
-    } catch (const YAML::Exception&) {
-      fail(key, "expected an integer");
-    }
-    if (v < lo || v > hi) {
-      fail(key, "must be in [" + std::to_string(lo) + ", " + std::to_string(hi) + "]");
-    }
-    return static_cast<int>(v);
+    return has(key) ? static_cast<int>(f_[key].integer(lo, hi)) : fallback;
   }
-
   bool boolean(const std::string& key, bool fallback) const {
-    if (!has(key)) return fallback;
-    try {
-      return node_[key].as<bool>();
-    } catch (const YAML::Exception&) {
-      fail(key, "expected true or false");
-    }
+    return has(key) ? f_[key].boolean() : fallback;
   }
-
   std::string text(const std::string& key, const std::string& fallback = "") const {
-    if (!has(key)) return fallback;
-    if (!node_[key].IsScalar()) fail(key, "expected a string");
-    return node_[key].as<std::string>();
+    return has(key) ? f_[key].text(false) : fallback;
   }
-
-  std::vector<double> numbers(const std::string& key, std::size_t size = 0) const {
-    if (!has(key)) return {};
-    const YAML::Node list = node_[key];
-    if (!list.IsSequence()) fail(key, "expected a list of numbers");
-    std::vector<double> out;
-    for (std::size_t i = 0; i < list.size(); ++i) {
-      double v = 0.0;
-      try {
-        v = list[i].as<double>();
-      } catch (const YAML::Exception&) {
-        fail(key, "entry " + std::to_string(i + 1) + " is not a number");
-      }
-      if (!std::isfinite(v)) fail(key, "entry " + std::to_string(i + 1) + " is not finite");
-      out.push_back(v);
-    }
-    if (size && out.size() != size) {
-      fail(key, "expected " + std::to_string(size) + " numbers, got " + std::to_string(out.size()));
-    }
-    return out;
+  std::vector<double> numbers(const std::string& key) const {
+    return has(key) ? f_[key].numbers() : std::vector<double>();
   }
-
   Eigen::Vector3d vector3(const std::string& key, const Eigen::Vector3d& fallback) const {
-    if (!has(key)) return fallback;
-    const auto v = numbers(key, 3);
-    return {v[0], v[1], v[2]};
+    return has(key) ? f_[key].vector3() : fallback;
   }
 
   /// The pose this map gives by `position: [x, y, z]` and `rpy: [roll, pitch, yaw]` (URDF
@@ -131,20 +68,17 @@ class Reader {
     return T;
   }
 
-  /// A list of maps under `key`, each read with its index in messages; with `required` the list
-  /// must exist and be non-empty (`what` describes an entry).
+  /// A list of maps under `key` (`what` describes an entry); with `required` the list must exist
+  /// and be non-empty.
   std::vector<Reader> maps(const std::string& key, const std::string& what, bool required) const {
     std::vector<Reader> out;
     if (!has(key)) {
       if (required) fail(key, "expected a list of " + what);
       return out;
     }
-    const YAML::Node list = node_[key];
-    if (!list.IsSequence() || (required && list.size() == 0))
-      fail(key, "expected a list of " + what);
-    for (std::size_t i = 0; i < list.size(); ++i) {
-      out.emplace_back(list[i], where_ + "." + key + "[" + std::to_string(i) + "]");
-    }
+    const std::vector<YamlField> items = f_[key].items(what);
+    if (required && items.empty()) fail(key, "expected a list of " + what);
+    for (const YamlField& item : items) out.emplace_back(item);
     return out;
   }
 
@@ -152,21 +86,12 @@ class Reader {
   std::vector<Eigen::Vector3d> vectors(const std::string& key) const {
     std::vector<Eigen::Vector3d> out;
     if (!has(key)) return out;
-    if (!node_[key].IsSequence()) fail(key, "expected a list of [x, y, z]");
-    for (std::size_t i = 0; i < node_[key].size(); ++i) {
-      YAML::Node item;
-      item["p"] = node_[key][i];
-      out.push_back(Reader(item, where_ + "." + key + "[" + std::to_string(i) + "]")
-                        .vector3("p", Eigen::Vector3d::Zero()));
-    }
+    for (const YamlField& item : f_[key].items("[x, y, z]")) out.push_back(item.vector3());
     return out;
   }
 
-  const std::string& where() const { return where_; }
-
  private:
-  YAML::Node node_;
-  std::string where_;
+  YamlField f_;
 };
 
 std::string resolve(const fs::path& dir, const std::string& file) {
@@ -236,7 +161,7 @@ void read_object(const Reader& r, const fs::path& dir, ObjectSpec& o) {
                          "lawnmower, chair)");
     }
     const std::set<std::string> fixed = {"bag", "travelbag", "lawnmower", "chair"};
-    if (fixed.count(shape.type) && s.has("type") && r["shape"].size() > 1)
+    if (fixed.count(shape.type) && s.has("type") && r.field()["shape"].node().size() > 1)
       s.fail("type", "the paper objects (bag, travelbag, lawnmower, chair) take no parameters");
     if (shape.type == "container")
       read_container_parameters(s, shape.container);
@@ -295,10 +220,9 @@ Scenario load_scenario(const std::string& path) {
 
 namespace {
 
-Scenario read_scenario(const YAML::Node& root, const std::string& path,
+Scenario read_scenario(const YamlField& root, const std::string& path,
                        const std::string& base_dir) {
-  if (!root.IsMap()) throw InputError(path + ": a scenario is a YAML map");
-  const Reader r(root, path);
+  const Reader r(root);
   r.only({"name", "robot", "start", "object", "environment", "clasp", "seed", "perception",
           "controller", "planner"});
   const fs::path dir(base_dir);
@@ -477,12 +401,11 @@ Scenario load_scenario_text(const std::string& text, const std::string& path,
                             const std::string& base_dir) {
   // Whatever check the scenario fails, in the robot's or a file's reader too, is about the input.
   return as_input_error([&] {
+    const YamlField root = YamlField::parse_map(text, path, "(a scenario)");
     try {
-      // yaml-cpp's own errors too (a conversion the Reader did not foresee) are the file's fault.
-      return read_scenario(YAML::Load(text), path, base_dir);
-    } catch (const YAML::Exception& e) {
-      throw InputError(path + ": malformed YAML: " + e.msg + " (line " +
-                       std::to_string(e.mark.line + 1) + ")");
+      return read_scenario(root, path, base_dir);
+    } catch (const YAML::Exception& e) {  // a conversion no check foresaw: still the file's fault
+      throw InputError(path + ": " + YamlField::line_of(e.mark) + one_line(e.msg));
     }
   });
 }

@@ -11,10 +11,10 @@
 
 #include <Eigen/SVD>
 #include <opencv2/core.hpp>
-#include <yaml-cpp/yaml.h>
 
 #include "perception/input_error.hpp"
 #include "perception/png_files.hpp"
+#include "perception/yaml_field.hpp"
 
 namespace claspplan::perception {
 
@@ -81,58 +81,31 @@ CameraModel read_camera_yaml(const std::string& path) {
 }
 
 CameraModel parse_camera_yaml(const std::string& text, const std::string& path) {
-  YAML::Node root;
-  try {
-    root = YAML::Load(text);
-  } catch (const YAML::Exception& e) {
-    std::string msg = e.what();
-    for (char& ch : msg)
-      if (ch == '\n') ch = ' ';
-    throw InputError(path + ": not a valid YAML camera file (" + msg + ")");
-  }
-  if (!root.IsMap()) throw InputError(path + ": expected a YAML map of camera fields");
+  const YamlField root = YamlField::parse_map(text, path, "of camera fields");
   CameraModel c;
-  auto scalar = [&](const char* key) -> double {
-    const YAML::Node n = root[key];
-    if (!n) throw InputError(path + ": missing field '" + key + "'");
-    try {
-      return n.as<double>();
-    } catch (const YAML::Exception&) {
-      throw InputError(path + ": field '" + key + "' must be a number");
-    }
-  };
-  auto integer = [&](const char* key) -> int {
-    const double v = scalar(key);
-    if (!std::isfinite(v) || v != std::floor(v) || std::abs(v) > 1e9)
-      throw InputError(path + ": field '" + key + "' must be an integer, got " + num(v));
-    return static_cast<int>(v);
+  const auto integer = [&](const char* key) {
+    return static_cast<int>(root.required(key).integer(-1000000000, 1000000000));
   };
   c.width = integer("width");
   c.height = integer("height");
-  c.fx = scalar("fx");
-  c.fy = scalar("fy");
-  c.cx = scalar("cx");
-  c.cy = scalar("cy");
-  c.depth_scale = scalar("depth_scale");
-  const YAML::Node t = root["T_world_camera"];
-  if (!t) throw InputError(path + ": missing field 'T_world_camera'");
+  c.fx = root.required("fx").number();
+  c.fy = root.required("fy").number();
+  c.cx = root.required("cx").number();
+  c.cy = root.required("cy").number();
+  c.depth_scale = root.required("depth_scale").number();
+  // 16 numbers (4x4 row-major), flat or as 4 rows of 4.
+  const YamlField t = root.required("T_world_camera");
   std::vector<double> values;
-  try {
-    if (!t.IsSequence()) throw YAML::Exception(YAML::Mark(), "not a list");
-    for (const auto& row : t) {
-      if (row.IsSequence()) {
-        if (row.size() != 4) throw YAML::Exception(YAML::Mark(), "row of size != 4");
-        for (const auto& v : row) values.push_back(v.as<double>());
-      } else {
-        values.push_back(row.as<double>());
-      }
+  for (const YamlField& row : t.items("16 numbers (4x4 row-major) or 4 rows of 4")) {
+    if (!row.is_list()) {
+      values.push_back(row.number());
+      continue;
     }
-  } catch (const YAML::Exception&) {
-    throw InputError(path + ": T_world_camera must be 16 numbers (4x4 row-major) or 4 rows of 4");
+    const std::vector<double> r = row.numbers(4);
+    values.insert(values.end(), r.begin(), r.end());
   }
   if (values.size() != 16)
-    throw InputError(path + ": T_world_camera must have 16 numbers, got " +
-                     std::to_string(values.size()));
+    t.fail("must have 16 numbers (4x4 row-major), got " + std::to_string(values.size()));
   Eigen::Matrix4d M;
   for (int i = 0; i < 16; ++i) M(i / 4, i % 4) = values[i];
   c.T_world_camera.matrix() = M;

@@ -31,4 +31,12 @@ decltype(auto) as_input_error(F&& f) {
   }
 }
 
+/// The text on one line (newlines as spaces, no trailing spaces): messages are one line.
+inline std::string one_line(std::string s) {
+  for (char& c : s)
+    if (c == '\n' || c == '\r') c = ' ';
+  while (!s.empty() && s.back() == ' ') s.pop_back();
+  return s;
+}
+
 }  // namespace claspplan

@@ -9,128 +9,49 @@
 #include <stdexcept>
 #include <vector>
 
-#include <yaml-cpp/yaml.h>
-
+#include "perception/yaml_field.hpp"
 #include "robots/robot_model_detail.hpp"
 
 namespace claspplan::robots::robot_model_detail {
 
 namespace {
 
-// ---------------------------------------------------------------------------------------------
-// YAML helpers: every error names the file, the key path and (when known) the line.
-
-struct Yaml {
-  std::string file;
-
-  [[noreturn]] void error(const YAML::Node& node, const std::string& path,
-                          const std::string& what) const {
-    std::string where = path;
-    if (node.IsDefined() && node.Mark().line >= 0)
-      where = "line " + std::to_string(node.Mark().line + 1) + ": " + path;
-    fail(file, where + ": " + what);
-  }
-
-  YAML::Node required(const YAML::Node& map, const std::string& key,
-                      const std::string& path) const {
-    if (!map.IsMap()) error(map, path, "expected a mapping");
-    YAML::Node n = map[key];
-    if (!n.IsDefined() || n.IsNull()) error(map, path, "missing key '" + key + "'");
-    return n;
-  }
-
-  void allowed_keys(const YAML::Node& map, const std::string& path,
-                    const std::set<std::string>& keys) const {
-    if (!map.IsMap()) error(map, path, "expected a mapping");
-    for (const auto& kv : map) {
-      const std::string k = kv.first.as<std::string>();
-      if (!keys.count(k)) error(kv.first, path, "unknown key '" + k + "'");
-    }
-  }
-
-  double number(const YAML::Node& n, const std::string& path) const {
-    if (!n.IsScalar()) error(n, path, "expected a number");
-    double v = 0.0;
-    try {
-      v = n.as<double>();
-    } catch (const YAML::Exception&) {
-      error(n, path, "expected a number, got '" + n.Scalar() + "'");
-    }
-    if (!std::isfinite(v)) error(n, path, "must be finite, got '" + n.Scalar() + "'");
-    return v;
-  }
-
-  std::string string(const YAML::Node& n, const std::string& path) const {
-    if (!n.IsScalar() || n.Scalar().empty()) error(n, path, "expected a non-empty name");
-    return n.Scalar();
-  }
-
-  bool boolean(const YAML::Node& n, const std::string& path) const {
-    if (!n.IsScalar()) error(n, path, "expected true or false");
-    try {
-      return n.as<bool>();
-    } catch (const YAML::Exception&) {
-      error(n, path, "expected true or false, got '" + n.Scalar() + "'");
-    }
-  }
-
-  std::vector<std::string> strings(const YAML::Node& n, const std::string& path) const {
-    if (!n.IsSequence()) error(n, path, "expected a list of names");
-    std::vector<std::string> out;
-    for (size_t i = 0; i < n.size(); ++i)
-      out.push_back(string(n[i], path + "[" + std::to_string(i) + "]"));
-    return out;
-  }
-
-  Eigen::Vector3d vec3(const YAML::Node& n, const std::string& path) const {
-    if (!n.IsSequence() || n.size() != 3) error(n, path, "expected a list of 3 numbers");
-    return Eigen::Vector3d(number(n[0], path + "[0]"), number(n[1], path + "[1]"),
-                           number(n[2], path + "[2]"));
-  }
-
-  YAML::Node sequence(const YAML::Node& n, const std::string& path) const {
-    if (!n.IsSequence()) error(n, path, "expected a list");
-    return n;
-  }
-};
-
 // What the YAML says, before it is checked against the URDF.
 struct HandJointSpec {
   std::string name;
   double open = 0.0;
   int closing = 0;
-  YAML::Node node;
+  YamlField node;
 };
 
 // The model under construction and what the steps hand on to each other.
 struct ModelBuild {
-  const Yaml& y;
   const std::string& urdf_file;
   const std::string& source;
   RobotModel m;
   UrdfJoints urdf;
   std::vector<int> q_links;  // child link of each q entry
-  std::vector<YAML::Node> q_nodes;
+  std::vector<YamlField> q_nodes;
   std::vector<HandJointSpec> hand_specs;
   std::map<int, int> q_of_link;
   std::map<int, double> held;
 
   // A link named in the YAML.
-  int link_of(const YAML::Node& n, const std::string& path) const {
-    const std::string name = y.string(n, path);
+  int link_of(const YamlField& n) const {
+    const std::string name = n.text();
     const int i = m.find_link(name);
-    if (i < 0) y.error(n, path, "unknown link '" + name + "' (not in " + urdf_file + ")");
+    if (i < 0) n.fail("unknown link '" + name + "' (not in " + urdf_file + ")");
     return i;
   }
 
   // The child link of a movable joint named in the YAML.
-  int movable_joint(const YAML::Node& n, const std::string& path) const {
-    const std::string name = y.string(n, path);
+  int movable_joint(const YamlField& n) const {
+    const std::string name = n.text();
     auto it = urdf.link_by_joint.find(name);
     if (it == urdf.link_by_joint.end())
-      y.error(n, path, "unknown joint '" + name + "' (not in " + urdf_file + ")");
+      n.fail("unknown joint '" + name + "' (not in " + urdf_file + ")");
     if (m.links[it->second].type == JointType::kFixed)
-      y.error(n, path, "joint '" + name + "' is fixed in the URDF");
+      n.fail("joint '" + name + "' is fixed in the URDF");
     return it->second;
   }
 
@@ -140,42 +61,34 @@ struct ModelBuild {
 };
 
 // arm: its joints (the first entries of q) and the tool link.
-void read_arm(ModelBuild& b, const YAML::Node& arm) {
-  const Yaml& y = b.y;
-  y.allowed_keys(arm, "arm", {"joints", "home", "tool_link"});
-  const YAML::Node arm_joints = y.sequence(y.required(arm, "joints", "arm"), "arm.joints");
-  for (size_t i = 0; i < arm_joints.size(); ++i) {
-    b.q_links.push_back(b.movable_joint(arm_joints[i], "arm.joints[" + std::to_string(i) + "]"));
-    b.q_nodes.push_back(arm_joints[i]);
+void read_arm(ModelBuild& b, const YamlField& arm) {
+  arm.only({"joints", "home", "tool_link"});
+  for (const YamlField& j : arm.required("joints").items("joint names")) {
+    b.q_links.push_back(b.movable_joint(j));
+    b.q_nodes.push_back(j);
   }
   b.m.arm_dof = static_cast<int>(b.q_links.size());
-  b.m.tool_link = b.link_of(y.required(arm, "tool_link", "arm"), "arm.tool_link");
+  b.m.tool_link = b.link_of(arm.required("tool_link"));
 }
 
 // hand: the base link and the hand joints (the last entries of q) with their open values and
 // closing directions.
-void read_hand_joints(ModelBuild& b, const YAML::Node& hand) {
-  const Yaml& y = b.y;
-  y.allowed_keys(
-      hand, "hand",
+void read_hand_joints(ModelBuild& b, const YamlField& hand) {
+  hand.only(
       {"base_link", "joints", "held", "fingers", "curves", "tcp", "v_fwd", "v_swd", "vlink_goal"});
-  b.m.hand_base_link = b.link_of(y.required(hand, "base_link", "hand"), "hand.base_link");
-  const YAML::Node hand_joints = y.sequence(y.required(hand, "joints", "hand"), "hand.joints");
-  if (hand_joints.size() == 0) y.error(hand_joints, "hand.joints", "the list is empty");
-  for (size_t i = 0; i < hand_joints.size(); ++i) {
-    const std::string path = "hand.joints[" + std::to_string(i) + "]";
-    const YAML::Node n = hand_joints[i];
-    y.allowed_keys(n, path, {"name", "open", "closing"});
-    HandJointSpec s;
-    s.node = n;
-    s.name = y.string(y.required(n, "name", path), path + ".name");
-    b.q_links.push_back(b.movable_joint(n["name"], path + ".name"));
+  b.m.hand_base_link = b.link_of(hand.required("base_link"));
+  const YamlField hand_joints = hand.required("joints");
+  const std::vector<YamlField> entries = hand_joints.items("hand joints");
+  if (entries.empty()) hand_joints.fail("the list is empty");
+  for (const YamlField& n : entries) {
+    n.only({"name", "open", "closing"});
+    HandJointSpec s{n.required("name").text(), 0.0, 0, n};
+    b.q_links.push_back(b.movable_joint(n["name"]));
     b.q_nodes.push_back(n["name"]);
-    if (n["open"]) s.open = y.number(n["open"], path + ".open");
-    if (n["closing"]) {
-      const double c = y.number(n["closing"], path + ".closing");
-      if (c != 1.0 && c != -1.0 && c != 0.0)
-        y.error(n["closing"], path, "closing must be 1, -1 or 0");
+    if (n.has("open")) s.open = n["open"].number();
+    if (n.has("closing")) {
+      const double c = n["closing"].number();
+      if (c != 1.0 && c != -1.0 && c != 0.0) n["closing"].fail("closing must be 1, -1 or 0");
       s.closing = static_cast<int>(c);
     }
     b.hand_specs.push_back(s);
@@ -189,12 +102,10 @@ void add_actuated_joints(ModelBuild& b) {
   for (size_t i = 0; i < b.q_links.size(); ++i) {
     const int li = b.q_links[i];
     if (b.q_of_link.count(li))
-      b.y.error(b.q_nodes[i], "joints", "joint '" + m.links[li].joint + "' is listed twice");
+      b.q_nodes[i].fail("joint '" + m.links[li].joint + "' is listed twice");
     b.q_of_link[li] = static_cast<int>(i);
     const urdf::Joint& uj = b.urdf_joint(li);
-    if (uj.mimic)
-      b.y.error(b.q_nodes[i], "joints",
-                "joint '" + uj.name + "' is a mimic joint and cannot be in q");
+    if (uj.mimic) b.q_nodes[i].fail("joint '" + uj.name + "' is a mimic joint and cannot be in q");
     Joint j;
     j.name = uj.name;
     j.link = li;
@@ -223,25 +134,24 @@ void add_actuated_joints(ModelBuild& b) {
       std::ostringstream s;
       s << "open value " << j.open << " of '" << j.name << "' is outside its limits [" << j.lower
         << ", " << j.upper << "]";
-      b.y.error(b.hand_specs[i].node, "hand.joints[" + std::to_string(i) + "]", s.str());
+      b.hand_specs[i].node.fail(s.str());
     }
   }
 }
 
 // Home: the arm's home pose (default 0, clamped into the limits) and the open hand.
-void read_home(ModelBuild& b, const YAML::Node& arm) {
+void read_home(ModelBuild& b, const YamlField& arm) {
   RobotModel& m = b.m;
   m.home = Eigen::VectorXd::Zero(m.dof());
-  if (arm["home"]) {
-    const YAML::Node h = b.y.sequence(arm["home"], "arm.home");
+  if (arm.has("home")) {
+    const std::vector<YamlField> h = arm["home"].items("joint values");
     if (static_cast<int>(h.size()) != m.arm_dof)
-      b.y.error(h, "arm.home", "expected " + std::to_string(m.arm_dof) + " values");
+      arm["home"].fail("expected " + std::to_string(m.arm_dof) + " values");
     for (int i = 0; i < m.arm_dof; ++i) {
-      const double v = b.y.number(h[i], "arm.home[" + std::to_string(i) + "]");
       const Joint& j = m.joints[i];
-      if (v < j.lower - 1e-9 || v > j.upper + 1e-9)
-        b.y.error(h[i], "arm.home", "value for '" + j.name + "' is outside its limits");
-      m.home[i] = v;
+      m.home[i] = h[i].number();
+      if (m.home[i] < j.lower - 1e-9 || m.home[i] > j.upper + 1e-9)
+        h[i].fail("value for '" + j.name + "' is outside its limits");
     }
   } else {
     m.home = m.clamp(m.home);
@@ -251,21 +161,19 @@ void read_home(ModelBuild& b, const YAML::Node& arm) {
 }
 
 // Held joints: constant values.
-void read_held(ModelBuild& b, const YAML::Node& hand) {
-  const Yaml& y = b.y;
-  if (!hand["held"] || hand["held"].IsNull()) return;
-  const YAML::Node h = hand["held"];
-  if (!h.IsMap()) y.error(h, "hand.held", "expected a mapping joint: value");
-  for (const auto& kv : h) {
-    const std::string path = "hand.held." + kv.first.Scalar();
-    const int li = b.movable_joint(kv.first, path);
-    if (b.q_of_link.count(li)) y.error(kv.first, path, "a held joint cannot also be in q");
+void read_held(ModelBuild& b, const YamlField& hand) {
+  if (!hand.has("held")) return;
+  const YamlField h = hand["held"];
+  if (!h.is_map()) h.fail("expected a mapping joint: value");
+  for (const auto& [key, value] : h.entries()) {
+    const int li = b.movable_joint(key);
+    if (b.q_of_link.count(li)) key.fail("a held joint cannot also be in q");
     const urdf::Joint& uj = b.urdf_joint(li);
-    if (uj.mimic) y.error(kv.first, path, "joint '" + uj.name + "' is a mimic joint");
-    const double v = y.number(kv.second, path);
+    if (uj.mimic) key.fail("joint '" + uj.name + "' is a mimic joint");
+    const double v = value.number();
     if (uj.limits && uj.type != urdf::Joint::CONTINUOUS &&
         (v < uj.limits->lower - 1e-9 || v > uj.limits->upper + 1e-9))
-      y.error(kv.second, path, "value is outside the joint's limits");
+      value.fail("value is outside the joint's limits");
     b.held[li] = v;
   }
 }
@@ -339,110 +247,100 @@ void mark_support_and_hand(ModelBuild& b) {
 }
 
 // Fingers.
-void read_fingers(ModelBuild& b, const YAML::Node& hand) {
-  const Yaml& y = b.y;
+void read_fingers(ModelBuild& b, const YamlField& hand) {
   RobotModel& m = b.m;
-  const YAML::Node fingers = y.sequence(y.required(hand, "fingers", "hand"), "hand.fingers");
+  const YamlField fingers = hand.required("fingers");
   bool has_thumb = false;
-  for (size_t i = 0; i < fingers.size(); ++i) {
-    const std::string path = "hand.fingers[" + std::to_string(i) + "]";
-    const YAML::Node n = fingers[i];
-    y.allowed_keys(n, path, {"name", "thumb", "joints", "links"});
+  for (const YamlField& n : fingers.items("fingers")) {
+    n.only({"name", "thumb", "joints", "links"});
     Finger f;
-    f.name = y.string(y.required(n, "name", path), path + ".name");
-    if (n["thumb"]) f.thumb = y.boolean(n["thumb"], path + ".thumb");
+    f.name = n.required("name").text();
+    if (n.has("thumb")) f.thumb = n["thumb"].boolean();
     has_thumb = has_thumb || f.thumb;
-    const YAML::Node fj = y.sequence(y.required(n, "joints", path), path + ".joints");
-    for (size_t k = 0; k < fj.size(); ++k) {
-      const std::string jp = path + ".joints[" + std::to_string(k) + "]";
-      const std::string jn = y.string(fj[k], jp);
+    const YamlField fj = n.required("joints");
+    for (const YamlField& j : fj.items("joint names")) {
+      const std::string jn = j.text();
       const int qi = m.find_joint(jn);
-      if (qi < 0 || !m.joints[qi].hand) y.error(fj[k], jp, "'" + jn + "' is not a hand joint");
+      if (qi < 0 || !m.joints[qi].hand) j.fail("'" + jn + "' is not a hand joint");
       f.joints.push_back(qi);
     }
-    if (f.joints.empty()) y.error(fj, path + ".joints", "a finger needs at least one joint");
-    const YAML::Node fl = y.sequence(y.required(n, "links", path), path + ".links");
+    if (f.joints.empty()) fj.fail("a finger needs at least one joint");
+    const YamlField fl = n.required("links");
     bool has_geometry = false;
-    for (size_t k = 0; k < fl.size(); ++k) {
-      f.links.push_back(b.link_of(fl[k], path + ".links[" + std::to_string(k) + "]"));
+    for (const YamlField& l : fl.items("link names")) {
+      f.links.push_back(b.link_of(l));
       has_geometry = has_geometry || !m.links[f.links.back()].shapes.empty();
     }
     // Closing a finger stops at contact: without collision geometry it would check nothing.
-    if (!has_geometry) y.error(fl, path + ".links", "no link of the finger has collision geometry");
+    if (!has_geometry) fl.fail("no link of the finger has collision geometry");
     m.fingers.push_back(f);
   }
-  if (!has_thumb) y.error(fingers, "hand.fingers", "no finger is marked 'thumb: true'");
+  if (!has_thumb) fingers.fail("no finger is marked 'thumb: true'");
 }
 
-LinkPoint read_link_point(const ModelBuild& b, const YAML::Node& n, const std::string& path) {
-  b.y.allowed_keys(n, path, {"link", "xyz"});
+LinkPoint read_link_point(const ModelBuild& b, const YamlField& n) {
+  n.only({"link", "xyz"});
   LinkPoint p;
-  p.link = b.link_of(b.y.required(n, "link", path), path + ".link");
-  if (n["xyz"]) p.point = b.y.vec3(n["xyz"], path + ".xyz");
+  p.link = b.link_of(n.required("link"));
+  if (n.has("xyz")) p.point = n["xyz"].vector3();
   return p;
 }
 
-LinkVector read_link_vector(const ModelBuild& b, const YAML::Node& n, const std::string& path) {
-  b.y.allowed_keys(n, path, {"link", "vector"});
+LinkVector read_link_vector(const ModelBuild& b, const YamlField& n) {
+  n.only({"link", "vector"});
   LinkVector v;
-  v.link = b.link_of(b.y.required(n, "link", path), path + ".link");
-  v.vector = b.y.vec3(b.y.required(n, "vector", path), path + ".vector");
-  if (v.vector.norm() < 1e-9) b.y.error(n, path, "the vector must not be zero");
+  v.link = b.link_of(n.required("link"));
+  v.vector = n.required("vector").vector3();
+  if (v.vector.norm() < 1e-9) n.fail("the vector must not be zero");
   v.vector.normalize();
   return v;
 }
 
 // Finger curves.
-void read_curves(ModelBuild& b, const YAML::Node& hand) {
-  const Yaml& y = b.y;
-  const YAML::Node curves = y.sequence(y.required(hand, "curves", "hand"), "hand.curves");
-  if (curves.size() == 0) y.error(curves, "hand.curves", "the list is empty");
-  for (size_t i = 0; i < curves.size(); ++i) {
-    const std::string path = "hand.curves[" + std::to_string(i) + "]";
-    const YAML::Node n = curves[i];
-    y.allowed_keys(n, path, {"name", "points"});
+void read_curves(ModelBuild& b, const YamlField& hand) {
+  const YamlField curves = hand.required("curves");
+  const std::vector<YamlField> entries = curves.items("finger curves");
+  if (entries.empty()) curves.fail("the list is empty");
+  for (size_t i = 0; i < entries.size(); ++i) {
+    const YamlField& n = entries[i];
+    n.only({"name", "points"});
     FingerCurve c;
-    c.name = n["name"] ? y.string(n["name"], path + ".name") : "curve_" + std::to_string(i);
-    const YAML::Node pts = y.sequence(y.required(n, "points", path), path + ".points");
+    c.name = n.has("name") ? n["name"].text() : "curve_" + std::to_string(i);
+    const YamlField pts = n.required("points");
+    const std::vector<YamlField> points = pts.items("link points");
     // Closed by its cord, a 2-point curve has no area: its virtual linking is always 0.
-    if (pts.size() < 3) y.error(pts, path + ".points", "a finger curve needs at least 3 points");
-    for (size_t k = 0; k < pts.size(); ++k)
-      c.points.push_back(read_link_point(b, pts[k], path + ".points[" + std::to_string(k) + "]"));
+    if (points.size() < 3) pts.fail("a finger curve needs at least 3 points");
+    for (const YamlField& p : points) c.points.push_back(read_link_point(b, p));
     b.m.curves.push_back(c);
   }
 }
 
 // The tool centre point, v_fwd, v_swd and the virtual-linking goal.
-void read_hand_frame(ModelBuild& b, const YAML::Node& hand) {
-  const Yaml& y = b.y;
+void read_hand_frame(ModelBuild& b, const YamlField& hand) {
   RobotModel& m = b.m;
-  m.tcp = read_link_point(b, y.required(hand, "tcp", "hand"), "hand.tcp");
-  m.v_fwd = read_link_vector(b, y.required(hand, "v_fwd", "hand"), "hand.v_fwd");
-  m.v_swd = read_link_vector(b, y.required(hand, "v_swd", "hand"), "hand.v_swd");
+  m.tcp = read_link_point(b, hand.required("tcp"));
+  m.v_fwd = read_link_vector(b, hand.required("v_fwd"));
+  m.v_swd = read_link_vector(b, hand.required("v_swd"));
   if (m.v_fwd.link == m.v_swd.link && std::abs(m.v_fwd.vector.dot(m.v_swd.vector)) > 1e-6)
-    y.error(hand["v_swd"], "hand.v_swd", "v_fwd and v_swd must be orthogonal");
-  if (hand["vlink_goal"]) {
-    m.vlink_goal = y.number(hand["vlink_goal"], "hand.vlink_goal");
-    if (m.vlink_goal <= 0.0 || m.vlink_goal >= 1.0)
-      y.error(hand["vlink_goal"], "hand.vlink_goal", "must be in (0, 1)");
+    hand["v_swd"].fail("v_fwd and v_swd must be orthogonal");
+  if (hand.has("vlink_goal")) {
+    m.vlink_goal = hand["vlink_goal"].number();
+    if (m.vlink_goal <= 0.0 || m.vlink_goal >= 1.0) hand["vlink_goal"].fail("must be in (0, 1)");
   }
 }
 
 // Allowed collision pairs.
-void read_allowed_pairs(ModelBuild& b, const YAML::Node& root) {
-  const Yaml& y = b.y;
+void read_allowed_pairs(ModelBuild& b, const YamlField& root) {
   RobotModel& m = b.m;
-  if (!root["collision"]) return;
-  const YAML::Node col = root["collision"];
-  y.allowed_keys(col, "collision", {"allowed_pairs"});
-  if (!col["allowed_pairs"]) return;
-  const YAML::Node pairs = y.sequence(col["allowed_pairs"], "collision.allowed_pairs");
-  for (size_t i = 0; i < pairs.size(); ++i) {
-    const std::string path = "collision.allowed_pairs[" + std::to_string(i) + "]";
-    if (!pairs[i].IsSequence() || pairs[i].size() != 2)
-      y.error(pairs[i], path, "expected a pair [link_a, link_b]");
-    int a = b.link_of(pairs[i][0], path + "[0]"), c = b.link_of(pairs[i][1], path + "[1]");
-    if (a == c) y.error(pairs[i], path, "a link paired with itself");
+  if (!root.has("collision")) return;
+  const YamlField col = root["collision"];
+  col.only({"allowed_pairs"});
+  if (!col.has("allowed_pairs")) return;
+  for (const YamlField& pair : col["allowed_pairs"].items("link pairs")) {
+    if (!pair.is_list() || pair.node().size() != 2) pair.fail("expected a pair [link_a, link_b]");
+    const std::vector<YamlField> links = pair.items();
+    const int a = b.link_of(links[0]), c = b.link_of(links[1]);
+    if (a == c) pair.fail("a link paired with itself");
     m.allowed_pairs.emplace_back(std::min(a, c), std::max(a, c));
   }
   std::sort(m.allowed_pairs.begin(), m.allowed_pairs.end());
@@ -450,17 +348,17 @@ void read_allowed_pairs(ModelBuild& b, const YAML::Node& root) {
                         m.allowed_pairs.end());
 }
 
-RobotModel build_model(const YAML::Node& root, const Yaml& y, const urdf::ModelInterface& urdf,
+RobotModel build_model(const YamlField& root, const urdf::ModelInterface& urdf,
                        const std::string& urdf_file, const std::string& source) {
-  ModelBuild b{y, urdf_file, source, {}, {}, {}, {}, {}, {}, {}};
+  ModelBuild b{urdf_file, source, {}, {}, {}, {}, {}, {}, {}};
   b.m.source = source;
-  y.allowed_keys(root, "(top level)", {"name", "urdf", "arm", "hand", "collision"});
-  b.m.name = y.string(y.required(root, "name", "(top level)"), "name");
+  root.only({"name", "urdf", "arm", "hand", "collision"});
+  b.m.name = root.required("name").text();
   b.urdf = read_urdf_tree(urdf, urdf_file, b.m);
 
-  const YAML::Node arm = y.required(root, "arm", "(top level)");
+  const YamlField arm = root.required("arm");
   read_arm(b, arm);
-  const YAML::Node hand = y.required(root, "hand", "(top level)");
+  const YamlField hand = root.required("hand");
   read_hand_joints(b, hand);
   add_actuated_joints(b);
   read_home(b, arm);
@@ -474,34 +372,18 @@ RobotModel build_model(const YAML::Node& root, const Yaml& y, const urdf::ModelI
   return b.m;
 }
 
-std::string where(const YAML::Exception& e) {
-  return e.mark.is_null() ? "" : "line " + std::to_string(e.mark.line + 1) + ": ";
-}
-
-YAML::Node parse_yaml(const std::string& text, const std::string& file) {
-  if (text.find('\0') != std::string::npos) fail(file, "not a YAML text file (contains NUL bytes)");
-  YAML::Node root;
-  try {
-    root = YAML::Load(text);
-  } catch (const YAML::Exception& e) {
-    fail(file, "malformed YAML: " + where(e) + one_line(e.msg));
-  }
-  if (!root.IsMap()) fail(file, "expected a YAML mapping with keys name, urdf, arm, hand");
-  return root;
-}
 }  // namespace
 
 RobotModel build_robot(const std::string& yaml_text, const std::string& yaml_file,
                        const UrdfReader& read_urdf, const std::string& source) {
-  const YAML::Node root = parse_yaml(yaml_text, yaml_file);
-  const Yaml y{yaml_file};
+  const YamlField root =
+      YamlField::parse_map(yaml_text, yaml_file, "with keys name, urdf, arm, hand");
   try {
-    const YAML::Node u = y.required(root, "urdf", "(top level)");
-    const std::pair<std::string, std::string> urdf = read_urdf(y.string(u, "urdf"));
+    const std::pair<std::string, std::string> urdf = read_urdf(root.required("urdf").text());
     const auto model = parse_urdf(urdf.second, urdf.first);
-    return build_model(root, y, *model, urdf.first, source);
+    return build_model(root, *model, urdf.first, source);
   } catch (const YAML::Exception& e) {
-    fail(yaml_file, where(e) + one_line(e.msg));
+    fail(yaml_file, YamlField::line_of(e.mark) + one_line(e.msg));
   }
 }
 

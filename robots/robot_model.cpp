@@ -119,13 +119,6 @@ namespace robot_model_detail {
   throw InputError(file + ": " + what);
 }
 
-std::string one_line(std::string s) {
-  for (char& c : s)
-    if (c == '\n' || c == '\r') c = ' ';
-  while (!s.empty() && s.back() == ' ') s.pop_back();
-  return s;
-}
-
 }  // namespace robot_model_detail
 
 namespace {

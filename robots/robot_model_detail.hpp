@@ -18,9 +18,6 @@ namespace claspplan::robots::robot_model_detail {
 /// Throws InputError "<file>: <what>".
 [[noreturn]] void fail(const std::string& file, const std::string& what);
 
-/// The text on one line (newlines as spaces, no trailing spaces).
-std::string one_line(std::string s);
-
 /// Parses a URDF; its errors (reported through console_bridge) become the exception's message.
 urdf::ModelInterfaceSharedPtr parse_urdf(const std::string& text, const std::string& file);
 

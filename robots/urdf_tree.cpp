@@ -5,6 +5,7 @@
 
 #include <console_bridge/console.h>
 
+#include "perception/input_error.hpp"
 #include "robots/robot_model_detail.hpp"
 
 namespace claspplan::robots::robot_model_detail {

@@ -147,7 +147,7 @@ TEST(LoopsCli, BadInputIsExitTwoWithOneLine) {
   expect_bad_input({"loops", dir.write("cut.png", png.substr(0, png.size() / 3)), "--camera", cam},
                    "decode");
   expect_bad_input({"loops", files[0].first, "--camera", dir.write("c.yaml", "fx: 1\n")},
-                   "missing field");
+                   "missing key");
   expect_bad_input({"loops", dir.file("torus.ply"), "--points", "abc"}, "--points");
   expect_bad_input({"loops", dir.file("torus.ply"), "--min-hole", "-1"}, "--min-hole");
   expect_bad_input({"loops", dir.file("torus.ply"), "--view", "1,2"}, "--view");
