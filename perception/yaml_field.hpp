@@ -50,7 +50,6 @@ class YamlField {
   }
 
   const YAML::Node& node() const { return node_; }
-  const std::string& file() const { return file_; }
   const std::string& path() const { return path_; }
   bool is_map() const { return node_.IsMap(); }
   bool is_list() const { return node_.IsSequence(); }
@@ -137,12 +136,6 @@ class YamlField {
     if (!node_.IsScalar() || (non_empty && node_.Scalar().empty()))
       fail(non_empty ? "expected a non-empty name" : "expected a string");
     return node_.Scalar();
-  }
-
-  std::vector<std::string> texts() const {
-    std::vector<std::string> out;
-    for (const YamlField& f : items("names")) out.push_back(f.text());
-    return out;
   }
 
   /// A list of finite numbers; with `size` > 0 exactly that many.
