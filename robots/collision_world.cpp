@@ -113,6 +113,17 @@ bool fcl_collide(const fcl::CollisionGeometryd* a, const Eigen::Isometry3d& ta,
 
 }  // namespace
 
+// The object's collision geometry, never modified once built (shared by worlds and threads).
+struct ObjectGeometry {
+  std::shared_ptr<Mesh> mesh;                // OBBRSS: distances
+  std::shared_ptr<const TriangleTree> tree;  // exact spheres and capsules, when built for them
+  // What collision queries test: `mesh`, or with the tree the same mesh in OBBs, whose bound of
+  // a primitive FCL computes in closed form (OBBRSS fits one to its corners each query).
+  Geometry collide;
+  int triangles = 0;
+  Box3 local_box;
+};
+
 struct CollisionWorld::Impl {
   RobotModel model;
   RobotData data;
@@ -132,14 +143,8 @@ struct CollisionWorld::Impl {
   std::vector<std::pair<int, int>> link_pairs;   // self-collision link pairs
   std::vector<std::pair<int, int>> shape_pairs;  // the same as shape pairs
 
-  std::shared_ptr<Mesh> object;
+  std::shared_ptr<const ObjectGeometry> object;
   bool exact_round = false;
-  std::shared_ptr<const TriangleTree> object_tree;  // when exact_round
-  // What collision queries test: `object`, or when exact_round the same mesh in OBBs, whose
-  // bound of a primitive FCL computes in closed form (OBBRSS fits one to its corners each query).
-  Geometry object_collide;
-  int object_triangle_count = 0;
-  Box3 object_local_box;
   Eigen::Isometry3d object_pose = Eigen::Isometry3d::Identity();
   Eigen::Isometry3d object_pose_inv = Eigen::Isometry3d::Identity();
 
@@ -208,14 +213,14 @@ struct CollisionWorld::Impl {
     if (!object) return false;
     const Eigen::Isometry3d local = object_pose_inv * tf[s];
     const Primitive& p = shapes[s].primitive;
-    if (!p.bounds(local).overlaps(object_local_box)) return false;
-    if (object_tree &&
+    if (!p.bounds(local).overlaps(object->local_box)) return false;
+    if (exact_round && object->tree &&
         (p.type == CollisionShape::Type::kSphere || p.type == CollisionShape::Type::kCapsule)) {
       const Eigen::Vector3d axis = local.linear().col(2) * p.half_length;
-      return object_tree->touches_capsule(local.translation() - axis, local.translation() + axis,
-                                          p.radius);
+      return object->tree->touches_capsule(local.translation() - axis, local.translation() + axis,
+                                           p.radius);
     }
-    return fcl_collide(shapes[s].geometry.get(), tf[s], object_collide.get(), object_pose);
+    return fcl_collide(shapes[s].geometry.get(), tf[s], object->collide.get(), object_pose);
   }
 
   int shape_hits_environment(int s) {
@@ -280,8 +285,9 @@ const RobotModel& CollisionWorld::model() const {
   return impl_->model;
 }
 
-void CollisionWorld::set_object(const std::vector<Eigen::Vector3d>& vertices,
-                                const std::vector<Eigen::Vector3i>& triangles) {
+std::shared_ptr<const ObjectGeometry> make_object_geometry(
+    const std::vector<Eigen::Vector3d>& vertices, const std::vector<Eigen::Vector3i>& triangles,
+    bool exact_round_shapes) {
   if (vertices.empty()) throw std::invalid_argument("collision object: no vertices");
   std::vector<fcl::Vector3d> v;
   v.reserve(vertices.size());
@@ -306,25 +312,35 @@ void CollisionWorld::set_object(const std::vector<Eigen::Vector3d>& vertices,
     t.emplace_back(tri[0], tri[1], tri[2]);
   }
   if (t.empty()) throw std::invalid_argument("collision object: no usable triangle");
-  auto mesh = std::make_shared<Mesh>();
-  mesh->beginModel(static_cast<int>(t.size()), n);
-  mesh->addSubModel(v, t);
-  mesh->endModel();
-  mesh->computeLocalAABB();
-  impl_->object = mesh;
-  impl_->object_collide = mesh;
-  impl_->object_tree.reset();
-  if (impl_->exact_round) {
-    impl_->object_tree = std::make_shared<TriangleTree>(vertices, triangles);
-    auto obb = std::make_shared<fcl::BVHModel<fcl::OBBd>>();
-    obb->beginModel(static_cast<int>(t.size()), n);
-    obb->addSubModel(v, t);
-    obb->endModel();
-    obb->computeLocalAABB();
-    impl_->object_collide = obb;
+  auto g = std::make_shared<ObjectGeometry>();
+  const auto build = [&](auto model) {
+    model->beginModel(static_cast<int>(t.size()), n);
+    model->addSubModel(v, t);
+    model->endModel();
+    model->computeLocalAABB();
+    return model;
+  };
+  g->mesh = build(std::make_shared<Mesh>());
+  g->collide = g->mesh;
+  if (exact_round_shapes) {
+    g->tree = std::make_shared<TriangleTree>(vertices, triangles);
+    g->collide = build(std::make_shared<fcl::BVHModel<fcl::OBBd>>());
   }
-  impl_->object_triangle_count = static_cast<int>(t.size());
-  impl_->object_local_box = b;
+  g->triangles = static_cast<int>(t.size());
+  g->local_box = b;
+  return g;
+}
+
+void CollisionWorld::set_object(const std::vector<Eigen::Vector3d>& vertices,
+                                const std::vector<Eigen::Vector3i>& triangles) {
+  impl_->object = make_object_geometry(vertices, triangles, impl_->exact_round);
+}
+
+void CollisionWorld::set_object(std::shared_ptr<const ObjectGeometry> geometry) {
+  if (!geometry) throw std::invalid_argument("collision object: no geometry");
+  if (impl_->exact_round && !geometry->tree)
+    throw std::logic_error("set_object: exact round shapes need a geometry built for them");
+  impl_->object = std::move(geometry);
 }
 
 void CollisionWorld::set_object_pose(const Eigen::Isometry3d& pose) {
@@ -338,15 +354,12 @@ const Eigen::Isometry3d& CollisionWorld::object_pose() const {
 }
 void CollisionWorld::clear_object() {
   impl_->object.reset();
-  impl_->object_collide.reset();
-  impl_->object_tree.reset();
-  impl_->object_triangle_count = 0;
 }
 bool CollisionWorld::has_object() const {
   return impl_->object != nullptr;
 }
 int CollisionWorld::object_triangles() const {
-  return impl_->object_triangle_count;
+  return impl_->object ? impl_->object->triangles : 0;
 }
 
 int CollisionWorld::add_box(const Eigen::Isometry3d& pose, const Eigen::Vector3d& size) {
@@ -388,10 +401,9 @@ void CollisionWorld::set_self_collision(bool enabled) {
 }
 
 void CollisionWorld::set_exact_round_shapes(bool enabled) {
-  if (enabled && impl_->object && !impl_->object_tree)
+  if (enabled && impl_->object && !impl_->object->tree)
     throw std::logic_error("set_exact_round_shapes(true) must come before set_object()");
   impl_->exact_round = enabled;
-  if (!enabled) impl_->object_tree.reset();
 }
 
 void CollisionWorld::set_hand_self_collision(bool enabled) {
@@ -458,9 +470,9 @@ bool CollisionWorld::link_near_object(const RobotData& data, int link, double cl
     grown.size += Eigen::Vector3d::Constant(2 * clearance);
     if (grown.type == CollisionShape::Type::kCylinder) grown.length += 2 * clearance;
     const Primitive p = make_primitive(grown);
-    if (!p.bounds(m.object_pose_inv * m.tf[s]).overlaps(m.object_local_box)) continue;
+    if (!p.bounds(m.object_pose_inv * m.tf[s]).overlaps(m.object->local_box)) continue;
     const Geometry g = make_geometry(grown);
-    if (fcl_collide(g.get(), m.tf[s], m.object_collide.get(), m.object_pose)) return true;
+    if (fcl_collide(g.get(), m.tf[s], m.object->collide.get(), m.object_pose)) return true;
   }
   return false;
 }
@@ -475,12 +487,13 @@ double CollisionWorld::link_object_distance(const RobotData& data, int link, dou
   for (int s : m.model.links[link].shapes) {
     m.place(data, s);
     const Eigen::Isometry3d local = m.object_pose_inv * m.tf[s];
-    if (m.shapes[s].primitive.bounds(local).distance(m.object_local_box) >= best) continue;
-    if (fcl_collide(m.shapes[s].geometry.get(), m.tf[s], m.object.get(), m.object_pose)) return 0.0;
+    if (m.shapes[s].primitive.bounds(local).distance(m.object->local_box) >= best) continue;
+    if (fcl_collide(m.shapes[s].geometry.get(), m.tf[s], m.object->mesh.get(), m.object_pose))
+      return 0.0;
     // FCL's own GJK is ~1.7x faster than libccd for mesh distances (measured); not for collisions.
     fcl::DistanceRequestd request(false, false, 0.0, 0.0, 1e-6, fcl::GST_INDEP);
     fcl::DistanceResultd result;
-    const double d = fcl::distance(m.shapes[s].geometry.get(), m.tf[s], m.object.get(),
+    const double d = fcl::distance(m.shapes[s].geometry.get(), m.tf[s], m.object->mesh.get(),
                                    m.object_pose, request, result);
     best = std::min(best, std::max(0.0, d));
   }

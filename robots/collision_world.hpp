@@ -39,6 +39,19 @@ struct CollisionReport {
   int second_link = -1;  ///< -1 unless `second` is a link
 };
 
+/// An object's collision geometry: FCL bounding-volume trees and, for exact round shapes, a
+/// TriangleTree. Built once and shared read-only by any number of worlds and threads (the
+/// secure-clasp check tests many hand poses against one object).
+struct ObjectGeometry;
+
+/// Builds it from a triangle mesh (vertices in the object frame); `exact_round_shapes` adds what
+/// CollisionWorld::set_exact_round_shapes(true) needs. Triangles with a repeated vertex are
+/// skipped. Throws std::invalid_argument for NaN/Inf vertices, indices out of range, or no
+/// usable triangle.
+std::shared_ptr<const ObjectGeometry> make_object_geometry(
+    const std::vector<Eigen::Vector3d>& vertices, const std::vector<Eigen::Vector3i>& triangles,
+    bool exact_round_shapes);
+
 class CollisionWorld {
  public:
   /// Keeps its own copy of the model.
@@ -57,6 +70,8 @@ class CollisionWorld {
   /// of range, or no usable triangle.
   void set_object(const std::vector<Eigen::Vector3d>& vertices,
                   const std::vector<Eigen::Vector3i>& triangles);
+  /// Shares a prebuilt object (with exact round shapes on, one built for them).
+  void set_object(std::shared_ptr<const ObjectGeometry> geometry);
   /// The object's pose in the world (default identity).
   void set_object_pose(const Eigen::Isometry3d& pose);
   const Eigen::Isometry3d& object_pose() const;

@@ -5,6 +5,7 @@
 #include <chrono>
 #include <cstdint>
 #include <functional>
+#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
@@ -145,14 +146,26 @@ SecureClaspReport check_secure_clasp(const robots::RobotModel& model,
                                      const Eigen::VectorXd& q, const servo::Points& loop,
                                      const SecureClaspOptions& options);
 
-/// check_secure_clasp(), telling in `screened_out` (optional) whether an escape showed in its first
-/// two rounds (the first 100 motions of every sequence): an insecure clasp found early.
-SecureClaspReport screened_secure_clasp(const robots::RobotModel& model,
-                                        const std::vector<Eigen::Vector3d>& object_vertices,
-                                        const std::vector<Eigen::Vector3i>& object_triangles,
-                                        const Eigen::VectorXd& q, const servo::Points& loop,
-                                        const SecureClaspOptions& options,
-                                        bool* screened_out = nullptr);
+/// check_secure_clasp() on one object for many closed hands (a search's clasp candidates): the
+/// object's collision geometry is built at the first check and kept (unless options.near_hand
+/// crops it for each hand).
+class SecureClaspChecker {
+ public:
+  SecureClaspChecker(const robots::RobotModel& model, std::vector<Eigen::Vector3d> object_vertices,
+                     std::vector<Eigen::Vector3i> object_triangles,
+                     const SecureClaspOptions& options);
+  /// The check at q; `screened_out` (optional) tells whether an escape showed in its first two
+  /// rounds (the first 100 motions of every sequence): an insecure clasp found early.
+  SecureClaspReport check(const Eigen::VectorXd& q, const servo::Points& loop,
+                          bool* screened_out = nullptr);
+
+ private:
+  const robots::RobotModel& model_;
+  std::vector<Eigen::Vector3d> vertices_;
+  std::vector<Eigen::Vector3i> triangles_;
+  SecureClaspOptions options_;
+  std::shared_ptr<const robots::ObjectGeometry> whole_;
+};
 
 /// The object's collision mesh as the secure-clasp check tests it: the triangles whose bounding
 /// box meets the closed hand's box grown by `margin`, and those of the loop's tube (every vertex

@@ -61,6 +61,8 @@ void run_search(ClaspPlanningOptions planning, const perception::Loop& loop,
   }
   Eigen::VectorXd q_closed;
   SecureClaspReport check;
+  SecureClaspChecker checker(model, r.collision_mesh.vertices, r.collision_mesh.triangles,
+                             planning.secure);
   int candidates = 0, screened = 0;
   const auto close_and_verify = [&](const Eigen::VectorXd& q_goal) {
     ++candidates;
@@ -81,8 +83,7 @@ void run_search(ClaspPlanningOptions planning, const perception::Loop& loop,
         std::to_string(planning.secure.motions) + " random motions of the object) ...");
     t = Clock::now();
     bool screened_out = false;
-    check = screened_secure_clasp(model, r.collision_mesh.vertices, r.collision_mesh.triangles,
-                                  q_closed, loop.points, planning.secure, &screened_out);
+    check = checker.check(q_closed, loop.points, &screened_out);
     r.timings.verification += since(t);
     if (!check.secure) {
       say("  rejected: the object got free in " + std::to_string(check.escaped_sequences) + " of " +

@@ -256,10 +256,21 @@ int round_end(int round, int motions) {
   return static_cast<int>(std::min<long>(end, motions));
 }
 
+// The object as the check at q tests it (see SecureClaspOptions::near_hand).
+std::shared_ptr<const robots::ObjectGeometry> object_near_hand(
+    const robots::RobotModel& model, const std::vector<Eigen::Vector3d>& object_vertices,
+    const std::vector<Eigen::Vector3i>& object_triangles, const Eigen::VectorXd& q,
+    const servo::Points& loop, const SecureClaspOptions& o) {
+  std::vector<Eigen::Vector3d> vertices;
+  std::vector<Eigen::Vector3i> triangles;
+  crop_near_hand(model, q, loop, o.near_hand, object_vertices, object_triangles, vertices,
+                 triangles);
+  return robots::make_object_geometry(vertices, triangles, o.exact_round_shapes);
+}
+
 // Runs the check; `rounds_done` (optional) tells how many rounds ran.
 SecureClaspReport run_check(const robots::RobotModel& model,
-                            const std::vector<Eigen::Vector3d>& object_vertices,
-                            const std::vector<Eigen::Vector3i>& object_triangles,
+                            const std::shared_ptr<const robots::ObjectGeometry>& object,
                             const Eigen::VectorXd& q, const servo::Points& loop,
                             const SecureClaspOptions& o, int* rounds_done) {
   SecureClaspReport report;
@@ -267,10 +278,6 @@ SecureClaspReport run_check(const robots::RobotModel& model,
   robots::RobotData data(model);
   robots::forward_kinematics(model, q, data);
 
-  std::vector<Eigen::Vector3d> vertices;
-  std::vector<Eigen::Vector3i> triangles;
-  crop_near_hand(model, q, loop, o.near_hand, object_vertices, object_triangles, vertices,
-                 triangles);
   const int cores = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
   const int threads = std::max(1, std::min(o.threads > 0 ? o.threads : cores, o.sequences));
   // The robot and the object only, as in the paper's test; the arm does not move.
@@ -279,7 +286,7 @@ SecureClaspReport run_check(const robots::RobotModel& model,
     worlds.emplace_back(model);
     worlds.back().set_self_collision(false);
     worlds.back().set_exact_round_shapes(o.exact_round_shapes);
-    worlds.back().set_object(vertices, triangles);
+    worlds.back().set_object(object);
   }
   if (worlds.front().in_collision(data)) {
     report.start_in_collision = true;
@@ -329,17 +336,31 @@ SecureClaspReport check_secure_clasp(const robots::RobotModel& model,
                                      const std::vector<Eigen::Vector3i>& object_triangles,
                                      const Eigen::VectorXd& q, const servo::Points& loop,
                                      const SecureClaspOptions& options) {
-  return run_check(model, object_vertices, object_triangles, q, loop, options, nullptr);
+  return run_check(model,
+                   object_near_hand(model, object_vertices, object_triangles, q, loop, options), q,
+                   loop, options, nullptr);
 }
 
-SecureClaspReport screened_secure_clasp(const robots::RobotModel& model,
-                                        const std::vector<Eigen::Vector3d>& object_vertices,
-                                        const std::vector<Eigen::Vector3i>& object_triangles,
-                                        const Eigen::VectorXd& q, const servo::Points& loop,
-                                        const SecureClaspOptions& options, bool* screened_out) {
+SecureClaspChecker::SecureClaspChecker(const robots::RobotModel& model,
+                                       std::vector<Eigen::Vector3d> object_vertices,
+                                       std::vector<Eigen::Vector3i> object_triangles,
+                                       const SecureClaspOptions& options)
+    : model_(model),
+      vertices_(std::move(object_vertices)),
+      triangles_(std::move(object_triangles)),
+      options_(options) {}
+
+SecureClaspReport SecureClaspChecker::check(const Eigen::VectorXd& q, const servo::Points& loop,
+                                            bool* screened_out) {
+  std::shared_ptr<const robots::ObjectGeometry> object = whole_;
+  if (options_.near_hand > 0.0) {
+    object = object_near_hand(model_, vertices_, triangles_, q, loop, options_);
+  } else if (!object) {
+    object = whole_ =
+        robots::make_object_geometry(vertices_, triangles_, options_.exact_round_shapes);
+  }
   int rounds = 0;
-  SecureClaspReport report =
-      run_check(model, object_vertices, object_triangles, q, loop, options, &rounds);
+  SecureClaspReport report = run_check(model_, object, q, loop, options_, &rounds);
   if (screened_out) *screened_out = !report.secure && rounds <= 2;
   return report;
 }

@@ -100,5 +100,36 @@ TEST(SecureClasp, SameReportForAnyNumberOfThreads) {
   EXPECT_GT(escapes, 0);
 }
 
+// A checker keeps the object's geometry between hands: reused over the poses of one object (the
+// fingers opened step by step), it reports what a fresh check of each pose reports.
+TEST(SecureClasp, ACheckerReusedOverHandsReportsAsFreshChecks) {
+  tsrrt::SecureClaspOptions o;
+  o.sequences = 4;
+  o.motions = 60;
+  std::unique_ptr<tsrrt::SecureClaspChecker> checker;
+  const Pose* owner = nullptr;
+  int reused = 0, escapes = 0;
+  for (const Pose& p : saved_poses()) {
+    const bool same_object = owner && owner->robot == p.robot && owner->vertices == p.vertices;
+    if (!same_object) {
+      checker = std::make_unique<tsrrt::SecureClaspChecker>(*p.robot, p.vertices, p.triangles, o);
+      owner = &p;
+    }
+    reused += same_object;
+    bool screened_out = false;
+    const auto got = checker->check(p.q, p.loop, &screened_out);
+    const auto fresh = tsrrt::check_secure_clasp(*p.robot, p.vertices, p.triangles, p.q, p.loop, o);
+    EXPECT_EQ(got.start_in_collision, fresh.start_in_collision) << p.name;
+    EXPECT_EQ(got.secure, fresh.secure) << p.name;
+    EXPECT_EQ(got.escaped_sequences, fresh.escaped_sequences) << p.name;
+    EXPECT_EQ(got.escape_motion, fresh.escape_motion) << p.name;
+    // 60 motions are within the screening's two rounds (25, then 100): every failure shows there.
+    EXPECT_EQ(screened_out, !got.secure) << p.name;
+    escapes += fresh.escaped_sequences > 0;
+  }
+  EXPECT_GE(reused, 30);
+  EXPECT_GT(escapes, 0);
+}
+
 }  // namespace
 }  // namespace claspplan::test
