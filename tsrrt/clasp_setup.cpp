@@ -85,7 +85,11 @@ void run_search(ClaspPlanningOptions planning, const perception::Loop& loop,
     bool screened_out = false;
     check = checker.check(q_closed, loop.points, &screened_out);
     r.timings.verification += since(t);
-    if (!check.secure) {
+    if (check.timed_out && check.escaped_sequences == 0) {
+      say("  not verified: the time limit ended the check");
+    } else if (check.start_in_collision) {
+      say("  rejected: the closed hand touches the object");
+    } else if (!check.secure) {
       say("  rejected: the object got free in " + std::to_string(check.escaped_sequences) + " of " +
           std::to_string(check.sequences) + " sequences" +
           (screened_out ? " of the screening (the full check's first motions)" : ""));
