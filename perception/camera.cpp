@@ -3,7 +3,6 @@
 #include <cmath>
 #include <cstdint>
 #include <cstring>
-#include <filesystem>
 #include <fstream>
 #include <iomanip>
 #include <sstream>
@@ -12,6 +11,7 @@
 #include <Eigen/SVD>
 #include <opencv2/core.hpp>
 
+#include "perception/file_io_detail.hpp"
 #include "perception/input_error.hpp"
 #include "perception/png_files.hpp"
 #include "perception/yaml_field.hpp"
@@ -64,20 +64,8 @@ void validate_camera(const CameraModel& c, const std::string& what) {
   require(R.determinant() > 0, what, "T_world_camera's rotation is a reflection (det < 0)");
 }
 
-namespace {
-
-// A small text file (a camera or a depth image), whole; fails when missing or unreadable.
-std::string read_file(const std::string& path, const std::string& missing) {
-  if (!std::filesystem::is_regular_file(path)) throw InputError(path + ": " + missing);
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw InputError(path + ": " + missing);
-  return std::string((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-}
-
-}  // namespace
-
 CameraModel read_camera_yaml(const std::string& path) {
-  return parse_camera_yaml(read_file(path, "camera file not found"), path);
+  return parse_camera_yaml(file_io_detail::read_all(path), path);
 }
 
 CameraModel parse_camera_yaml(const std::string& text, const std::string& path) {
@@ -227,7 +215,7 @@ void check_png_chunks(const std::string& data, const std::string& path, const Ca
 }  // namespace
 
 DepthImage read_depth_png(const std::string& path, const CameraModel& camera) {
-  return decode_depth_png(read_file(path, "depth image not found or unreadable"), camera, path);
+  return decode_depth_png(file_io_detail::read_all(path), camera, path);
 }
 
 DepthImage decode_depth_png(const std::string& data, const CameraModel& camera,
