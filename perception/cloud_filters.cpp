@@ -62,6 +62,50 @@ PointCloud random_subset(const PointCloud& cloud, int count, std::uint64_t seed)
   return out;
 }
 
+namespace {
+
+// The first point of each occupied grid cell of size `cell` (indices, in input order).
+std::vector<int> one_per_cell(const PointCloud& cloud, const Eigen::Vector3d& origin, double cell) {
+  std::vector<std::pair<std::uint64_t, int>> keys(cloud.size());
+  for (std::size_t i = 0; i < cloud.size(); ++i) {
+    const Eigen::Vector3d c = ((cloud[i] - origin) / cell).array().floor();
+    const auto k = [&](int a) {
+      return static_cast<std::uint64_t>(std::clamp(c[a], 0.0, 2097151.0));
+    };
+    keys[i] = {k(0) << 42 | k(1) << 21 | k(2), static_cast<int>(i)};
+  }
+  std::sort(keys.begin(), keys.end());
+  std::vector<int> picks;
+  for (std::size_t i = 0; i < keys.size(); ++i)
+    if (i == 0 || keys[i].first != keys[i - 1].first) picks.push_back(keys[i].second);
+  std::sort(picks.begin(), picks.end());
+  return picks;
+}
+
+}  // namespace
+
+PointCloud even_subset(const PointCloud& cloud, int count, std::uint64_t seed) {
+  if (count < 0) throw std::invalid_argument("even_subset: negative count");
+  if (static_cast<int>(cloud.size()) <= count) return cloud;
+  Eigen::AlignedBox3d box;
+  for (const auto& p : cloud) box.extend(p);
+  // Occupied cells of a surface grow as 1 / cell^2: a few corrections reach the target.
+  const double target = 1.5 * count;
+  double cell = std::max(box.diagonal().norm() / std::sqrt(target), 1e-9);
+  std::vector<int> picks;
+  for (int pass = 0; pass < 8; ++pass) {
+    picks = one_per_cell(cloud, box.min(), cell);
+    const double found = static_cast<double>(picks.size());
+    if (found >= count && found <= 2.0 * count) break;
+    cell *= std::sqrt(found / target);
+  }
+  if (static_cast<int>(picks.size()) < count) return random_subset(cloud, count, seed);
+  PointCloud even;
+  even.reserve(picks.size());
+  for (int i : picks) even.push_back(cloud[i]);
+  return random_subset(even, count, seed);
+}
+
 PlaneRemovalResult remove_supporting_plane(const PointCloud& cloud, const PlaneRemovalOptions& o) {
   PlaneRemovalResult r;
   r.kept = cloud;

@@ -46,6 +46,12 @@ PointCloud remove_statistical_outliers(const PointCloud& cloud, int k = 16,
 /// A seeded uniform random subset of at most `count` points (order preserved).
 PointCloud random_subset(const PointCloud& cloud, int count, std::uint64_t seed);
 
+/// A spatially even subset of at most `count` points: one point (the first in input order) per
+/// occupied cell of a grid whose cell size is adjusted until about 1.5 `count` cells are occupied,
+/// then a seeded random subset of those. Unlike random_subset(), parts seen by few pixels (a thin
+/// handle at a grazing angle, far from the camera) keep their share of points. Order preserved.
+PointCloud even_subset(const PointCloud& cloud, int count, std::uint64_t seed);
+
 /// Farthest-point down-sampling to `count` points (all points if there are fewer): starts at a
 /// seeded random point, then repeatedly takes the point farthest from those taken. Spacing is
 /// nearly uniform, which keeps K_d free of sampling gaps. O(M log M) with a k-d tree (a radius

@@ -17,9 +17,11 @@ namespace claspplan::perception {
 namespace {
 
 // Down-sampling works on at most this many times N points (a seeded random subset first); depth
-// points are thinned to 3 N before the outlier filter, its cost dominating the 100 ms budget.
+// points are thinned evenly to 3 N before the outlier filter, its cost dominating the 100 ms
+// budget.
 constexpr int kOversample = 4;
 constexpr int kDepthOversample = 3;
+constexpr int kDepthPool = 16;  // the random pool the even subset is drawn from
 // How far below and around the workspace the supporting plane is looked for (m).
 constexpr double kSupportMargin = 0.1;
 
@@ -144,7 +146,9 @@ Prepared prepare(const PerceptionInputs& in, const PerceptionOptions& o) {
     if (depth.empty())
       throw InputError(o.remove_plane ? "no depth point above the supporting plane"
                                       : "no depth point lies inside the workspace box");
-    depth = random_subset(depth, kDepthOversample * n, o.seed);
+    // Evenly over space rather than over pixels: a thin part seen by few pixels keeps its points.
+    depth =
+        even_subset(random_subset(depth, kDepthPool * n, o.seed), kDepthOversample * n, o.seed + 3);
     const size_t before = depth.size();
     if (o.outlier_k > 0) depth = remove_statistical_outliers(depth, o.outlier_k, o.outlier_stddev);
     r.outliers = static_cast<int>(before - depth.size());

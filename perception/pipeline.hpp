@@ -6,10 +6,11 @@
 //     removal (RANSAC), statistical outlier removal (both PCL). All views are merged first.
 //     Clouds are used as read; meshes are sampled uniformly by area with 4 N points, over the whole
 //     surface or only where visible from the --view positions.
-//  2. Down-sampling to N points: a seeded random subset of at most 4 N points (3 N for depth
-//     points, before the outlier filter, to bound its cost), then farthest-point sampling to N from
-//     a seeded start: nearly uniform spacing, deterministic with the seed; the N points are then
-//     put in Morton order (locality).
+//  2. Down-sampling to N points: a seeded random subset of at most 4 N points; depth points are
+//     first thinned evenly over space to 3 N (a random pool of 16 N, one point per grid cell:
+//     a thin handle seen by few pixels keeps its points), before the outlier filter, to bound its
+//     cost. Then farthest-point sampling to N from a seeded start: nearly uniform spacing,
+//     deterministic with the seed; the N points are then put in Morton order (locality).
 //  3. d: given, or automatic_d() = 3.5 x the mean nearest-neighbour spacing of the N points.
 //  4. K_d from the CGAL 3-D Delaunay triangulation; the exact shortest H1 basis over Z2.
 //  5. Only stable loops are kept: a loop whose class is zero in K_d' (d' = persistence x d, and at

@@ -240,6 +240,27 @@ TEST(Targets, EquallySpacedWithUnitTangents) {
   EXPECT_THROW(clasp_targets({{0, 0, 0}, {0, 0, 0}, {0, 0, 0}}, 3), std::invalid_argument);
 }
 
+// A dense patch (many pixels) beside a thin bar seen by few: a random subset keeps the bar's
+// share of the pixels, the even subset its share of the space.
+TEST(Downsampling, EvenSubsetKeepsAThinPartThatRandomThinningStarves) {
+  PointCloud cloud;
+  for (int i = 0; i < 200; ++i)
+    for (int j = 0; j < 200; ++j) cloud.emplace_back(0.001 * i, 0.001 * j, 0.0);  // 20 cm patch
+  for (int i = 0; i < 400; ++i) cloud.emplace_back(0.3 + 0.0005 * i, 0.0, 0.0);   // 20 cm bar
+  const auto on_bar = [](const PointCloud& c) {
+    int n = 0;
+    for (const auto& p : c) n += p.x() > 0.25;
+    return n;
+  };
+  const PointCloud even = even_subset(cloud, 600, 1);
+  const PointCloud random = random_subset(cloud, 600, 1);
+  EXPECT_EQ(even.size(), 600u);
+  EXPECT_LE(on_bar(random), 12);  // about 600 x 400 / 40,400 = 6
+  EXPECT_GE(on_bar(even), 15);    // 29 bar cells of 7 mm among 870 in all: about 20
+  EXPECT_EQ(even, even_subset(cloud, 600, 1));
+  EXPECT_EQ(even_subset(cloud, 50000, 1), cloud);  // fewer points than asked: all of them
+}
+
 TEST(Pipeline, DeterministicWithTheSeed) {
   const ObjectModel a = from_mesh(purse(), 7);
   const ObjectModel b = from_mesh(purse(), 7);
