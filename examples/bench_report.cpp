@@ -61,6 +61,118 @@ void write_png(const std::filesystem::path& path, const cv::Mat& image) {
 
 const cv::Scalar kGreen(60, 160, 60), kRed(60, 60, 200), kGrey(120, 120, 120), kBlack(0, 0, 0);
 
+std::vector<BenchRecord> main_runs(const std::vector<BenchRecord>& records) {
+  std::vector<BenchRecord> out;
+  for (const auto& r : records)
+    if (!(r.tolerance > 0)) out.push_back(r);
+  return out;
+}
+
+std::vector<BenchRecord> sweep_runs(const std::vector<BenchRecord>& records) {
+  std::vector<BenchRecord> out;
+  for (const auto& r : records)
+    if (r.tolerance > 0) out.push_back(r);
+  return out;
+}
+
+// Paper Fig. 8 as numbers: the closed hand's mean VLk per goal tolerance, one dot per run (spread
+// sideways), secure clasps green, others red; a black bar at each tolerance's median.
+cv::Mat tolerance_sweep(const std::vector<BenchRecord>& runs) {
+  std::map<double, std::vector<const BenchRecord*>> by;
+  for (const auto& r : runs) by[r.tolerance].push_back(&r);
+  const int height = 420, margin = 60, column = 140;
+  const int width = 2 * margin + column * static_cast<int>(by.size());
+  cv::Mat img(height, std::max(width, 420), CV_8UC3, cv::Scalar(255, 255, 255));
+  double top = 1.0;
+  for (const auto& r : runs)
+    if (std::isfinite(r.final_linking)) top = std::max(top, std::ceil(2.0 * r.final_linking) / 2.0);
+  const int base = height - margin, span = height - 2 * margin;
+  const auto y_of = [&](double v) {
+    return base - static_cast<int>(std::clamp(v / top, 0.0, 1.0) * span);
+  };
+  cv::rectangle(img, cv::Point(margin, y_of(top)), cv::Point(img.cols - margin, base), kBlack);
+  for (double t = 0.0; t <= top + 1e-9; t += 0.25) {
+    cv::line(img, cv::Point(margin - 4, y_of(t)), cv::Point(margin, y_of(t)), kBlack);
+    cv::putText(img, fixed(t, 2), cv::Point(10, y_of(t) + 4), cv::FONT_HERSHEY_SIMPLEX, 0.4,
+                kBlack);
+  }
+  int c = 0;
+  for (const auto& [tolerance, list] : by) {
+    const int x0 = margin + c++ * column;
+    cv::putText(img, "tolerance " + fixed(tolerance, 2), cv::Point(x0 + 20, base + 25),
+                cv::FONT_HERSHEY_SIMPLEX, 0.45, kBlack);
+    std::vector<double> values;
+    for (std::size_t i = 0; i < list.size(); ++i) {
+      const BenchRecord& r = *list[i];
+      if (!std::isfinite(r.final_linking)) continue;
+      values.push_back(r.final_linking);
+      const int x = x0 + 20 + static_cast<int>((i * 97) % 100);
+      cv::circle(img, cv::Point(x, y_of(r.final_linking)), 4, r.verified ? kGreen : kRed,
+                 cv::FILLED, cv::LINE_AA);
+    }
+    if (!values.empty()) {
+      const int y = y_of(median(values));
+      cv::line(img, cv::Point(x0 + 10, y), cv::Point(x0 + column - 10, y), kBlack, 2);
+    }
+  }
+  cv::putText(img, "final mean VLk (fingers closed) per goal tolerance; green secure, bar median",
+              cv::Point(10, 25), cv::FONT_HERSHEY_SIMPLEX, 0.45, kBlack);
+  return img;
+}
+
+// Paper Sec. V-C: per tolerance, how many runs reached it, the final VLk, the secure clasps.
+std::string sweep_markdown(const std::vector<BenchRecord>& runs) {
+  struct Column {
+    int runs = 0, reached = 0, secure = 0;
+    std::vector<double> linking;
+  };
+  std::map<double, Column> columns;
+  std::map<std::string, std::map<double, const BenchRecord*>> cells;
+  for (const auto& r : runs) {
+    Column& col = columns[r.tolerance];
+    ++col.runs;
+    if (std::isfinite(r.final_linking)) {
+      ++col.reached;
+      col.linking.push_back(r.final_linking);
+    }
+    col.secure += r.verified;
+    cells[r.name][r.tolerance] = &r;
+  }
+  std::ostringstream md;
+  md << "\n## Virtual-linking tolerance (paper Sec. V-C, Fig. 8)\n\n"
+     << "The tree's goal tolerance set to each value, the first goal node taken (no check in the "
+        "search), the fingers closed, then the secure-clasp check.\n\n"
+     << "| tolerance | runs | goal node reached | median final VLk | lowest final VLk | secure "
+        "clasps |\n|---|---|---|---|---|---|\n";
+  for (const auto& [tolerance, col] : columns) {
+    const double lowest =
+        col.linking.empty() ? kNaN : *std::min_element(col.linking.begin(), col.linking.end());
+    md << "| " << fixed(tolerance, 2) << " | " << col.runs << " | " << col.reached << " | "
+       << fixed(median(col.linking), 2) << " | " << fixed(lowest, 2) << " | " << col.secure << "/"
+       << col.runs << " |\n";
+  }
+  md << "\nPer scenario (final VLk; S secure, - not):\n\n| scenario |";
+  for (const auto& column : columns) md << " " << fixed(column.first, 2) << " |";
+  md << "\n|---|";
+  for (std::size_t i = 0; i < columns.size(); ++i) md << "---|";
+  md << "\n";
+  for (const auto& [name, row] : cells) {
+    md << "| " << name << " |";
+    for (const auto& column : columns) {
+      const auto it = row.find(column.first);
+      if (it == row.end() || !std::isfinite(it->second->final_linking)) {
+        md << " - |";
+      } else {
+        md << " " << fixed(it->second->final_linking, 2) << (it->second->verified ? " S" : "")
+           << " |";
+      }
+    }
+    md << "\n";
+  }
+  md << "\nPlot: tolerance_sweep.png.\n";
+  return md.str();
+}
+
 // Paper Fig. 6: min vs max over the finger curves of the final pose, open-curve |Lk| (circles)
 // and VLk (crosses); verified clasps green, others red.
 cv::Mat linking_scatter(const std::vector<BenchRecord>& records) {
@@ -119,7 +231,8 @@ cv::Mat time_per_case(const std::vector<BenchRecord>& records) {
   return img;
 }
 
-std::string report_markdown(const std::vector<BenchRecord>& records, const std::string& title) {
+std::string report_markdown(const std::vector<BenchRecord>& all, const std::string& title) {
+  const std::vector<BenchRecord> records = main_runs(all);
   struct Row {
     int cases = 0, success = 0, verified = 0;
     std::vector<double> seconds, counts;
@@ -167,6 +280,8 @@ std::string report_markdown(const std::vector<BenchRecord>& records, const std::
   }
   md << "\nFiles: cases.csv (one row per run), cases.json (read by `claspplan bench --merge`), "
         "linking_scatter.png (paper Fig. 6), time_per_case.png.\n";
+  const auto sweep = sweep_runs(all);
+  if (!sweep.empty()) md << sweep_markdown(sweep);
   return md.str();
 }
 
@@ -176,12 +291,14 @@ BenchRecord::BenchRecord()
     : min_open_linking(kNaN),
       max_open_linking(kNaN),
       min_virtual_linking(kNaN),
-      max_virtual_linking(kNaN) {}
+      max_virtual_linking(kNaN),
+      final_linking(kNaN) {}
 
 nlohmann::json record_json(const BenchRecord& r) {
   return {{"name", r.name},
           {"scenario", r.scenario},
           {"seed", r.seed},
+          {"tolerance", r.tolerance},
           {"exit_code", r.exit_code},
           {"success", r.success},
           {"verified", r.verified},
@@ -199,6 +316,7 @@ nlohmann::json record_json(const BenchRecord& r) {
           {"max_open_linking", number(r.max_open_linking)},
           {"min_virtual_linking", number(r.min_virtual_linking)},
           {"max_virtual_linking", number(r.max_virtual_linking)},
+          {"final_linking", number(r.final_linking)},
           {"reason", r.reason}};
 }
 
@@ -208,6 +326,7 @@ BenchRecord record_from_json(const nlohmann::json& j) {
     r.name = j.at("name").get<std::string>();
     r.scenario = j.at("scenario").get<std::string>();
     r.seed = j.at("seed").get<std::uint64_t>();
+    r.tolerance = j.at("tolerance").get<double>();
     r.exit_code = j.at("exit_code").get<int>();
     r.success = j.at("success").get<bool>();
     r.verified = j.at("verified").get<bool>();
@@ -225,6 +344,7 @@ BenchRecord record_from_json(const nlohmann::json& j) {
     r.max_open_linking = number_from(j, "max_open_linking");
     r.min_virtual_linking = number_from(j, "min_virtual_linking");
     r.max_virtual_linking = number_from(j, "max_virtual_linking");
+    r.final_linking = number_from(j, "final_linking");
     r.reason = j.at("reason").get<std::string>();
   } catch (const nlohmann::json::exception& e) {
     throw InputError(std::string("bench case record: ") + e.what());
@@ -235,12 +355,15 @@ BenchRecord record_from_json(const nlohmann::json& j) {
 nlohmann::json bench_summary(const std::vector<BenchRecord>& records) {
   int success = 0, verified = 0;
   std::vector<double> seconds;
+  int cases = 0;
   for (const auto& r : records) {
+    if (r.tolerance > 0) continue;
+    ++cases;
     success += r.success;
     verified += r.verified;
     if (r.achieved()) seconds.push_back(r.seconds);
   }
-  return {{"cases", records.size()},
+  return {{"cases", cases},
           {"success", success},
           {"verified", verified},
           {"median_seconds", number(median(seconds))},
@@ -255,26 +378,29 @@ void write_bench_report(const std::vector<BenchRecord>& records, const std::stri
   fs::create_directories(dir);
   nlohmann::json all = nlohmann::json::array();
   std::ostringstream csv;
-  csv << "name,scenario,seed,exit_code,success,verified,controller_only,cycles,steps,nodes,seconds,"
+  csv << "name,scenario,seed,tolerance,exit_code,success,verified,controller_only,cycles,steps,"
+         "nodes,seconds,"
          "perception,planning,"
          "closing,verification,total,min_open_linking,max_open_linking,min_virtual_linking,"
-         "max_virtual_linking,reason\n";
+         "max_virtual_linking,final_linking,reason\n";
   for (const auto& r : records) {
     all.push_back(record_json(r));
-    csv << csv_text(r.name) << ',' << csv_text(r.scenario) << ',' << r.seed << ',' << r.exit_code
-        << ',' << r.success << ',' << r.verified << ',' << r.controller_only << ',' << r.cycles
-        << ',' << r.steps << ',' << r.nodes << ',' << fixed(r.seconds, 4) << ','
-        << fixed(r.perception, 4) << ',' << fixed(r.planning, 4) << ',' << fixed(r.closing, 4)
-        << ',' << fixed(r.verification, 4) << ',' << fixed(r.total, 4) << ','
-        << fixed(r.min_open_linking, 4) << ',' << fixed(r.max_open_linking, 4) << ','
+    csv << csv_text(r.name) << ',' << csv_text(r.scenario) << ',' << r.seed << ','
+        << fixed(r.tolerance, 2) << ',' << r.exit_code << ',' << r.success << ',' << r.verified
+        << ',' << r.controller_only << ',' << r.cycles << ',' << r.steps << ',' << r.nodes << ','
+        << fixed(r.seconds, 4) << ',' << fixed(r.perception, 4) << ',' << fixed(r.planning, 4)
+        << ',' << fixed(r.closing, 4) << ',' << fixed(r.verification, 4) << ',' << fixed(r.total, 4)
+        << ',' << fixed(r.min_open_linking, 4) << ',' << fixed(r.max_open_linking, 4) << ','
         << fixed(r.min_virtual_linking, 4) << ',' << fixed(r.max_virtual_linking, 4) << ','
-        << csv_text(r.reason) << '\n';
+        << fixed(r.final_linking, 4) << ',' << csv_text(r.reason) << '\n';
   }
   write_text(dir / "cases.json", all.dump(2) + "\n");
   write_text(dir / "cases.csv", csv.str());
   write_text(dir / "report.md", report_markdown(records, title));
-  write_png(dir / "linking_scatter.png", linking_scatter(records));
-  write_png(dir / "time_per_case.png", time_per_case(records));
+  write_png(dir / "linking_scatter.png", linking_scatter(main_runs(records)));
+  write_png(dir / "time_per_case.png", time_per_case(main_runs(records)));
+  const auto sweep = sweep_runs(records);
+  if (!sweep.empty()) write_png(dir / "tolerance_sweep.png", tolerance_sweep(sweep));
 }
 
 std::vector<BenchRecord> read_bench_cases(const std::string& path) {

@@ -15,6 +15,8 @@ struct BenchRecord {
   std::string name;
   std::string scenario;
   std::uint64_t seed = 1;
+  /// > 0: a run of the tolerance sweep (BenchCase::tolerance), reported apart from the others.
+  double tolerance = 0.0;
   int exit_code = 0;  ///< as `claspplan run` would exit
   bool success = false;
   bool verified = false;
@@ -27,6 +29,7 @@ struct BenchRecord {
   /// Paper Fig. 6: over the finger curves of the final pose, |Lk| of the open curves and VLk
   /// (NaN when the run has no final pose).
   double min_open_linking, max_open_linking, min_virtual_linking, max_virtual_linking;
+  double final_linking;  ///< mean VLk (eq. 4) of the final pose, the fingers closed; NaN if none
   std::string reason;
   BenchRecord();
   /// What the run was for: a verified clasp, or with the controller alone its goal.
@@ -37,12 +40,13 @@ nlohmann::json record_json(const BenchRecord& r);
 /// Throws std::invalid_argument when a field is missing or of the wrong type.
 BenchRecord record_from_json(const nlohmann::json& j);
 
-/// {cases, success, verified, median_seconds, max_seconds} over the records (seconds of the runs
-/// that achieved what they were for: see BenchRecord::achieved()).
+/// {cases, success, verified, median_seconds, max_seconds} over the records outside the tolerance
+/// sweep (seconds of the runs that achieved what they were for: see BenchRecord::achieved()).
 nlohmann::json bench_summary(const std::vector<BenchRecord>& records);
 
-/// Writes cases.json, cases.csv, report.md, time_per_case.png and linking_scatter.png into
-/// out_dir (created if needed). Throws std::runtime_error when a file cannot be written.
+/// Writes cases.json, cases.csv, report.md, time_per_case.png, linking_scatter.png and, with sweep
+/// runs, tolerance_sweep.png into out_dir (created if needed). Throws std::runtime_error when a
+/// file cannot be written.
 void write_bench_report(const std::vector<BenchRecord>& records, const std::string& out_dir,
                         const std::string& title);
 

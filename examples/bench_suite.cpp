@@ -29,6 +29,10 @@ std::vector<std::pair<std::string, std::string>> matching(const fs::path& dir,
 
 }  // namespace
 
+std::vector<double> paper_tolerances() {
+  return {0.5, 0.65, 0.70, 0.75};
+}
+
 std::vector<std::string> bench_suites() {
   return {"quick", "real", "paper"};
 }
@@ -58,6 +62,13 @@ std::vector<BenchCase> suite_cases(const std::string& suite, const std::string& 
   std::vector<BenchCase> cases;
   for (const auto& [name, path] : files) {
     for (int s = 1; s <= seeds; ++s) cases.push_back({name, path, static_cast<std::uint64_t>(s)});
+  }
+  if (suite == "paper") {
+    for (double t : paper_tolerances()) {
+      for (const auto& [name, path] : files) {
+        if (name.find("_1_") != std::string::npos) cases.push_back({name, path, 1, t});  // pose 1
+      }
+    }
   }
   return cases;
 }

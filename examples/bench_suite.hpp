@@ -13,12 +13,19 @@ struct BenchCase {
   std::string name;      ///< the scenario file's stem, e.g. purse_1_sdh or real/pitcher_sdh
   std::string scenario;  ///< path of the scenario file
   std::uint64_t seed = 1;
+  /// > 0: a run of the virtual-linking tolerance sweep (paper Sec. V-C, Fig. 8): the tree's goal
+  /// tolerance set to this, the first goal node taken and verified afterwards (not in the search).
+  double tolerance = 0.0;
 };
+
+/// The tolerances of the paper's sweep (Fig. 8).
+std::vector<double> paper_tolerances();
 
 /// The suites, each a set of scenario files under `scenarios_dir`:
 ///  - quick: purse_1_<hand> and jug_<hand> (a few minutes of work, bounded by cycles);
 ///  - real: real/*.yaml, the public meshes of real objects;
-///  - paper: <object>_<pose>_<hand>.yaml and chair_obstructed_<hand>.yaml (paper Sec. V).
+///  - paper: <object>_<pose>_<hand>.yaml and chair_obstructed_<hand>.yaml (paper Sec. V), then
+///    the tolerance sweep: each <object>_1_<hand> at seed 1 with each of paper_tolerances().
 std::vector<std::string> bench_suites();
 
 /// The cases of `suite` with seeds 1..seeds, sorted by name then seed. Throws

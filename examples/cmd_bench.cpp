@@ -8,6 +8,7 @@
 #include <fstream>
 #include <mutex>
 #include <thread>
+#include <tuple>
 
 #include <unistd.h>
 
@@ -58,6 +59,7 @@ BenchRecord run_case(const BenchCase& c, const BenchOptions& o, const fs::path& 
   r.name = c.name;
   r.scenario = c.scenario;
   r.seed = c.seed;
+  r.tolerance = c.tolerance;
   RunOptions run;
   run.out_dir = dir.string();
   run.seed = c.seed;
@@ -68,7 +70,12 @@ BenchRecord run_case(const BenchCase& c, const BenchOptions& o, const fs::path& 
   run.controller_only = o.controller_only;
   nlohmann::json summary;
   try {
-    const RunOutcome outcome = run_scenario(load_scenario(c.scenario), run);
+    Scenario scenario = load_scenario(c.scenario);
+    if (c.tolerance > 0) {  // the sweep: the first goal node at this tolerance, verified after
+      scenario.planning.closable_linking = c.tolerance;
+      scenario.planning.verify_in_search = false;
+    }
+    const RunOutcome outcome = run_scenario(scenario, run);
     r.exit_code = outcome.exit_code;
     summary = outcome.summary;
   } catch (const InputError& e) {
@@ -95,6 +102,7 @@ BenchRecord run_case(const BenchCase& c, const BenchOptions& o, const fs::path& 
   r.verification = value_or(timing, "verification", 0.0);
   r.total = value_or(timing, "total", 0.0);
   const nlohmann::json result = read_json_file(dir / "result.json");
+  r.final_linking = value_or(result, "virtual_linking", r.final_linking);
   if (result.contains("verification") && result["verification"].is_object()) {
     const auto& v = result["verification"];
     r.min_open_linking = value_or(v, "min_open_linking", r.min_open_linking);
@@ -145,6 +153,11 @@ std::vector<BenchRecord> run_cases(const std::vector<BenchCase>& cases, const Be
     for (std::size_t i; (i = next++) < cases.size();) {
       std::string stem = cases[i].name;
       for (char& ch : stem) ch = ch == '/' ? '_' : ch;
+      if (cases[i].tolerance > 0) {
+        char tolerance[32];
+        std::snprintf(tolerance, sizeof tolerance, "_tolerance%.2f", cases[i].tolerance);
+        stem += tolerance;
+      }
       const fs::path dir =
           fs::path(o.out) / "runs" / (stem + "_seed" + std::to_string(cases[i].seed));
       records[i] = run_case(cases[i], o, dir);
@@ -167,8 +180,9 @@ int run_bench(const BenchOptions& o) {
       const auto part = read_bench_cases((fs::path(dir) / "cases.json").string());
       records.insert(records.end(), part.begin(), part.end());
     }
+    // The suites' order: the runs by name and seed, then the sweep's by tolerance and name.
     std::stable_sort(records.begin(), records.end(), [](const auto& a, const auto& b) {
-      return a.name != b.name ? a.name < b.name : a.seed < b.seed;
+      return std::tie(a.tolerance, a.name, a.seed) < std::tie(b.tolerance, b.name, b.seed);
     });
     title = "claspplan bench: " + std::to_string(o.merge.size()) + " outputs merged";
   } else {

@@ -39,7 +39,14 @@ TEST(BenchSuite, ShardsPartitionTheCasesInOrder) {
   EXPECT_THROW(cli::shard_cases(cases, "0/4"), std::invalid_argument);
   EXPECT_THROW(cli::shard_cases(cases, "5/4"), std::invalid_argument);
   EXPECT_THROW(cli::shard_cases(cases, "1-4"), std::invalid_argument);
-  EXPECT_EQ(cli::suite_cases("paper", dir.path().string(), 1).size(), 1u);  // purse_1_dlr
+  // purse_1_dlr at seed 1, then at seed 1 with each tolerance of the sweep.
+  const auto paper = cli::suite_cases("paper", dir.path().string(), 1);
+  ASSERT_EQ(paper.size(), 1u + cli::paper_tolerances().size());
+  EXPECT_EQ(paper[0].tolerance, 0.0);
+  for (std::size_t i = 1; i < paper.size(); ++i) {
+    EXPECT_EQ(paper[i].name, "purse_1_dlr");
+    EXPECT_EQ(paper[i].tolerance, cli::paper_tolerances()[i - 1]);
+  }
   TempDir empty;
   EXPECT_THROW(cli::suite_cases("real", empty.path().string(), 1), std::invalid_argument);
   EXPECT_THROW(cli::suite_cases("nosuch", dir.path().string(), 1), std::invalid_argument);
@@ -58,6 +65,35 @@ TEST(BenchReport, RecordsSurviveTheirFileAndMissingValuesStayMissing) {
   EXPECT_EQ(back.reason, r.reason);
   EXPECT_TRUE(std::isnan(back.min_open_linking));
   EXPECT_THROW(cli::record_from_json(json{{"name", "x"}}), std::invalid_argument);
+}
+
+// The tolerance sweep's runs are reported in their own section and plot, outside the summary.
+TEST(BenchReport, SweepRunsHaveTheirOwnSectionAndStayOutOfTheSummary) {
+  std::vector<cli::BenchRecord> records(3);
+  records[0].name = "purse_1_sdh";
+  records[0].verified = records[0].success = true;
+  records[0].seconds = 0.4;
+  for (int i : {1, 2}) {
+    records[i].name = "purse_1_sdh";
+    records[i].tolerance = i == 1 ? 0.5 : 0.75;
+    records[i].final_linking = i == 1 ? 0.61 : 0.93;
+    records[i].verified = records[i].success = i == 2;
+    records[i].seconds = 9.0;
+  }
+  const json s = cli::bench_summary(records);
+  EXPECT_EQ(s["cases"], 1);
+  EXPECT_EQ(s["max_seconds"].get<double>(), 0.4);
+  TempDir dir;
+  cli::write_bench_report(records, dir.file("out"), "t");
+  const std::string md = slurp(dir.file("out/report.md"));
+  EXPECT_NE(md.find("| 0.50 | 1 | 1 | 0.61 | 0.61 | 0/1 |"), std::string::npos) << md;
+  EXPECT_NE(md.find("| 0.75 | 1 | 1 | 0.93 | 0.93 | 1/1 |"), std::string::npos) << md;
+  EXPECT_NE(md.find("| purse_1_sdh | 0.61 | 0.93 S |"), std::string::npos) << md;
+  EXPECT_TRUE(std::filesystem::exists(dir.file("out/tolerance_sweep.png")));
+  const auto back = cli::read_bench_cases(dir.file("out/cases.json"));
+  ASSERT_EQ(back.size(), 3u);
+  EXPECT_EQ(back[2].tolerance, 0.75);
+  EXPECT_EQ(back[2].final_linking, 0.93);
 }
 
 // The quick suite (bounded by cycles, its default) as two shards of a cluster job, two runs at a
