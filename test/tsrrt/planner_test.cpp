@@ -20,6 +20,7 @@ class ToyProblem : public tsrrt::PlanningProblem {
   bool object = false;  // the object: x in (0.88, 0.92), |y| < 0.1, in front of (1, 0)
   double y_max = std::numeric_limits<double>::infinity();  // a joint limit on y
   std::vector<TaskPoint> detours;                          // approaches() of every goal
+  int reject_first = 0;  // accept() refuses this many goal nodes first (insecure clasps)
   int checks = 0;
 
   TaskPoint project(const Eigen::VectorXd& q) override {
@@ -65,6 +66,11 @@ class ToyProblem : public tsrrt::PlanningProblem {
   bool reached(const TaskPoint& x, const TaskPoint& goal) const override {
     return x.linking >= 0.8 && (x.position - goal.position).norm() < 0.02;
   }
+  bool accept(const Eigen::VectorXd& q) override {
+    (void)q;
+    return ++accepts > reject_first;
+  }
+  int accepts = 0;
 
  private:
   bool limited = false;
@@ -247,6 +253,27 @@ TEST(TsRrt, ContactWithTheObjectLeadsToAnotherApproach) {
   EXPECT_NE(f.reason.find("1 connect attempt; it ended in contact with the object (1)"),
             std::string::npos)
       << f.reason;
+}
+
+// A goal node the clasp check rejects is followed by a detour: from nearby, the controller would
+// bring the next attempt to the same rejected pose.
+TEST(TsRrt, ARejectedGoalNodeLeadsToAnotherApproach) {
+  ToyProblem toy;
+  toy.wall = false;
+  toy.reject_first = 1;
+  toy.detours = {{Eigen::Vector3d(1.0, 0.4, 0.0), 0.0}, {Eigen::Vector3d(1.0, -0.4, 0.0), 0.0}};
+  const auto r = tsrrt::build_ts_rrt(toy, kStart, kGoalBehindObject, detour_parameters());
+  ASSERT_TRUE(r.success) << r.reason;
+  const tsrrt::ConnectOutcomes& o = r.outcomes;
+  EXPECT_EQ(o.rejected, 1);
+  EXPECT_EQ(o.contact_object, 0);
+  EXPECT_EQ(o.detours, 1);  // the rejection's, the only failed ending
+  EXPECT_EQ(o.accepted, 1);
+  EXPECT_EQ(o.attempts, 2);  // the direct one, then the one after the detour, which is accepted
+  // The accepted path comes from the detour's side.
+  bool aside = false;
+  for (const auto& q : r.path) aside |= std::abs(q[1]) >= 0.3;
+  EXPECT_TRUE(aside);
 }
 
 TEST(TsRrt, DetoursCycleThroughTheApproaches) {
