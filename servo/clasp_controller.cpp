@@ -50,6 +50,7 @@ ClaspController::ClaspController(const robots::RobotModel& model, Points loop,
 }
 
 void ClaspController::update(const Eigen::VectorXd& q) {
+  if (updated_ && q.size() == updated_q_.size() && q == updated_q_) return;
   robots::forward_kinematics(model_, q, data_);
   // Reuse the hand's buffers: robots fills the same layout.
   std::swap(curves_.points, hand_.curves);
@@ -64,6 +65,8 @@ void ClaspController::update(const Eigen::VectorXd& q) {
   position_.update(hand_);
   alignment_.update(hand_, position_);
   linking_.update(hand_);
+  updated_q_ = q;
+  updated_ = true;
 }
 
 TaskState ClaspController::project(const Eigen::VectorXd& q) {

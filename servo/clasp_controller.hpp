@@ -58,7 +58,10 @@ class ClaspController {
 
   /// Starts a new trajectory: the alignment task's kept direction is dropped (a tree search calls
   /// this when it continues from another node than the last step's result).
-  void forget_direction() { alignment_.forget_direction(); }
+  void forget_direction() {
+    alignment_.forget_direction();
+    updated_ = false;  // the alignment at the same q may now differ
+  }
 
   /// What the last step() decided.
   const PrioritizedStep& last_step() const { return last_; }
@@ -86,6 +89,10 @@ class ClaspController {
   Eigen::VectorXd arm_mask_, hand_mask_;
   Eigen::VectorXd mid_, bias_weight_;  // pose bias: range middles and gain/(half range)²
   PrioritizedStep last_;
+  // The configuration the features were last computed at: a search projects each new node and
+  // then steps from it, so the second computation at the same q is skipped.
+  Eigen::VectorXd updated_q_;
+  bool updated_ = false;
 };
 
 }  // namespace claspplan::servo

@@ -111,9 +111,39 @@ void BM_ControlStepIcub(benchmark::State& state) {
   std::vector<servo::ClaspTarget> targets;
   for (int i = 0; i < 12; ++i) targets.push_back({ring[i * 8], hand.sideways});
   servo::ClaspController controller(model, ring, targets);
-  for (auto _ : state) benchmark::DoNotOptimize(controller.step(model.home, centre, 1.0));
+  for (auto _ : state) {
+    controller.forget_direction();  // else the features at the same q are kept, not recomputed
+    benchmark::DoNotOptimize(controller.step(model.home, centre, 1.0));
+  }
 }
 BENCHMARK(BM_ControlStepIcub);
+
+// A connect attempt's inner loop as TS-RRT runs it, kr5_icub: step from the last node, project
+// the new one (its task point for the tree), 40 times. Argument 0: the features computed at the
+// projection are kept for the next step (one kinematics per step); 1: recomputed there, as before
+// (two per step). Time per step = real time / 40.
+void BM_SearchStepsIcub(benchmark::State& state) {
+  const robots::RobotModel model = robots::load_robot("kr5_icub");
+  servo::ClaspController probe(model, hundred_segment_loop(),
+                               {{Eigen::Vector3d(5, 0, 0), Eigen::Vector3d::UnitY()}});
+  const Eigen::Vector3d centre = probe.project(model.home).position;
+  const servo::HandKinematics& hand = probe.hand();
+  const Curve ring = circle(centre + 0.15 * hand.forward, 0.15, -hand.forward, hand.sideways, 100);
+  std::vector<servo::ClaspTarget> targets;
+  for (int i = 0; i < 12; ++i) targets.push_back({ring[i * 8], hand.sideways});
+  servo::ClaspController controller(model, ring, targets);
+  const bool twice = state.range(0) == 1;
+  for (auto _ : state) {
+    controller.forget_direction();
+    Eigen::VectorXd q = model.home;
+    for (int s = 0; s < 40; ++s) {
+      q = controller.step(q, centre + 0.15 * hand.forward, 1.0);
+      benchmark::DoNotOptimize(controller.project(q).linking);
+      if (twice) controller.forget_direction();
+    }
+  }
+}
+BENCHMARK(BM_SearchStepsIcub)->Arg(0)->Arg(1);
 
 }  // namespace
 }  // namespace claspplan::test
