@@ -64,15 +64,115 @@ const cv::Scalar kGreen(60, 160, 60), kRed(60, 60, 200), kGrey(120, 120, 120), k
 std::vector<BenchRecord> main_runs(const std::vector<BenchRecord>& records) {
   std::vector<BenchRecord> out;
   for (const auto& r : records)
-    if (!(r.tolerance > 0)) out.push_back(r);
+    if (!(r.tolerance > 0) && r.method.empty()) out.push_back(r);
   return out;
 }
 
 std::vector<BenchRecord> sweep_runs(const std::vector<BenchRecord>& records) {
   std::vector<BenchRecord> out;
   for (const auto& r : records)
-    if (r.tolerance > 0) out.push_back(r);
+    if (r.tolerance > 0 && r.method.empty()) out.push_back(r);
   return out;
+}
+
+std::vector<BenchRecord> method_runs(const std::vector<BenchRecord>& records,
+                                     const std::string& method) {
+  std::vector<BenchRecord> out;
+  for (const auto& r : records)
+    if (r.method == method) out.push_back(r);
+  return out;
+}
+
+std::vector<std::string> methods(const std::vector<BenchRecord>& records) {
+  std::vector<std::string> out;
+  for (const auto& r : records)
+    if (!r.method.empty() && std::find(out.begin(), out.end(), r.method) == out.end())
+      out.push_back(r.method);
+  return out;
+}
+
+// TS-RRT's main run of the baseline run's scenario and seed, or nullptr.
+const BenchRecord* ours_for(const std::vector<BenchRecord>& main, const BenchRecord& r) {
+  for (const auto& m : main)
+    if (m.name == r.name && m.seed == r.seed) return &m;
+  return nullptr;
+}
+
+// Planning seconds per scenario: TS-RRT's bar (left) beside the baseline's (right, outlined);
+// green verified, red not.
+cv::Mat method_time(const std::vector<BenchRecord>& main, const std::vector<BenchRecord>& runs,
+                    const std::string& method) {
+  const int height = 360, margin = 50;
+  const int pair = std::clamp(900 / std::max<int>(1, static_cast<int>(runs.size())), 4, 30);
+  const int width = 2 * margin + pair * static_cast<int>(runs.size());
+  cv::Mat img(height, std::max(width, 520), CV_8UC3, cv::Scalar(255, 255, 255));
+  double top = 1e-3;
+  for (const auto& r : runs) {
+    top = std::max(top, r.seconds);
+    if (const BenchRecord* m = ours_for(main, r)) top = std::max(top, m->seconds);
+  }
+  const int base = height - margin, span = height - 2 * margin, half = pair / 2;
+  cv::line(img, cv::Point(margin, base), cv::Point(img.cols - margin, base), kBlack);
+  for (std::size_t i = 0; i < runs.size(); ++i) {
+    const int x = margin + static_cast<int>(i) * pair;
+    if (const BenchRecord* m = ours_for(main, runs[i])) {
+      const int h = static_cast<int>(m->seconds / top * span);
+      cv::rectangle(img, cv::Point(x + 1, base - h), cv::Point(x + half - 1, base),
+                    m->verified ? kGreen : kRed, cv::FILLED);
+    }
+    const int h = static_cast<int>(runs[i].seconds / top * span);
+    cv::rectangle(img, cv::Point(x + half, base - h), cv::Point(x + pair - 2, base),
+                  runs[i].verified ? kGreen : kRed, 1);
+  }
+  cv::putText(img,
+              "seconds per scenario (max " + fixed(top, 2) + " s): TS-RRT filled, " + method +
+                  " outlined; green verified",
+              cv::Point(10, 25), cv::FONT_HERSHEY_SIMPLEX, 0.45, kBlack);
+  return img;
+}
+
+// TS-RRT against a baseline on the same scenarios and seeds.
+std::string method_markdown(const std::vector<BenchRecord>& main,
+                            const std::vector<BenchRecord>& runs, const std::string& method) {
+  int success = 0, verified = 0, ours_success = 0, ours_verified = 0, paired = 0;
+  std::vector<double> seconds, ours_seconds;
+  for (const auto& r : runs) {
+    success += r.success;
+    verified += r.verified;
+    if (r.verified) seconds.push_back(r.seconds);
+    if (const BenchRecord* m = ours_for(main, r)) {
+      ++paired;
+      ours_success += m->success;
+      ours_verified += m->verified;
+      if (m->verified) ours_seconds.push_back(m->seconds);
+    }
+  }
+  std::ostringstream md;
+  md << "\n## TS-RRT against the baseline " << method << "\n\n"
+     << "The same scenarios and seeds; seconds of planning with the clasp checks (perception "
+        "excluded), medians over the verified runs.\n\n"
+     << "| method | runs | success | verified clasps | median s |\n|---|---|---|---|---|\n"
+     << "| TS-RRT | " << paired << " | " << ours_success << " | " << ours_verified << " | "
+     << fixed(median(ours_seconds), 2) << " |\n"
+     << "| " << method << " | " << runs.size() << " | " << success << " | " << verified << " | "
+     << fixed(median(seconds), 2) << " |\n\n"
+     << "Success: a clasp found (grasp_rrt: a grasp scored). Verified clasps among the "
+        "successes: TS-RRT "
+     << ours_verified << " of " << ours_success << ", " << method << " " << verified << " of "
+     << success << ". Median time ratio (" << method
+     << " / TS-RRT): " << fixed(median(seconds) / median(ours_seconds), 1) << ".\n\n"
+     << "| scenario | seed | TS-RRT | " << method << " | " << method
+     << ": reason when not verified |\n|---|---|---|---|---|\n";
+  const auto cell = [](const BenchRecord& r) {
+    return (r.verified ? "verified " : "no, ") + fixed(r.seconds, 2) + " s";
+  };
+  for (const auto& r : runs) {
+    const BenchRecord* m = ours_for(main, r);
+    md << "| " << r.name << " | " << r.seed << " | " << (m ? cell(*m) : "-") << " | " << cell(r)
+       << " | " << (r.verified ? "" : r.reason.substr(0, r.reason.find(':', 25))) << " |\n";
+  }
+  md << "\nPlot: " << method << "_time.png.\n";
+  return md.str();
 }
 
 // Paper Fig. 8 as numbers: the closed hand's mean VLk per goal tolerance, one dot per run (spread
@@ -282,6 +382,8 @@ std::string report_markdown(const std::vector<BenchRecord>& all, const std::stri
         "linking_scatter.png (paper Fig. 6), time_per_case.png.\n";
   const auto sweep = sweep_runs(all);
   if (!sweep.empty()) md << sweep_markdown(sweep);
+  for (const auto& method : methods(all))
+    md << method_markdown(records, method_runs(all, method), method);
   return md.str();
 }
 
@@ -299,6 +401,7 @@ nlohmann::json record_json(const BenchRecord& r) {
           {"scenario", r.scenario},
           {"seed", r.seed},
           {"tolerance", r.tolerance},
+          {"method", r.method},
           {"exit_code", r.exit_code},
           {"success", r.success},
           {"verified", r.verified},
@@ -327,6 +430,7 @@ BenchRecord record_from_json(const nlohmann::json& j) {
     r.scenario = j.at("scenario").get<std::string>();
     r.seed = j.at("seed").get<std::uint64_t>();
     r.tolerance = j.at("tolerance").get<double>();
+    r.method = j.at("method").get<std::string>();
     r.exit_code = j.at("exit_code").get<int>();
     r.success = j.at("success").get<bool>();
     r.verified = j.at("verified").get<bool>();
@@ -355,20 +459,34 @@ BenchRecord record_from_json(const nlohmann::json& j) {
 nlohmann::json bench_summary(const std::vector<BenchRecord>& records) {
   int success = 0, verified = 0;
   std::vector<double> seconds;
-  int cases = 0;
-  for (const auto& r : records) {
-    if (r.tolerance > 0) continue;
-    ++cases;
+  const auto main = main_runs(records);
+  for (const auto& r : main) {
     success += r.success;
     verified += r.verified;
     if (r.achieved()) seconds.push_back(r.seconds);
   }
-  return {{"cases", cases},
-          {"success", success},
-          {"verified", verified},
-          {"median_seconds", number(median(seconds))},
-          {"max_seconds",
-           number(seconds.empty() ? kNaN : *std::max_element(seconds.begin(), seconds.end()))}};
+  nlohmann::json summary = {
+      {"cases", main.size()},
+      {"success", success},
+      {"verified", verified},
+      {"median_seconds", number(median(seconds))},
+      {"max_seconds",
+       number(seconds.empty() ? kNaN : *std::max_element(seconds.begin(), seconds.end()))}};
+  for (const auto& method : methods(records)) {
+    const auto runs = method_runs(records, method);
+    int m_success = 0, m_verified = 0;
+    std::vector<double> m_seconds;
+    for (const auto& r : runs) {
+      m_success += r.success;
+      m_verified += r.verified;
+      if (r.verified) m_seconds.push_back(r.seconds);
+    }
+    summary[method] = {{"cases", runs.size()},
+                       {"success", m_success},
+                       {"verified", m_verified},
+                       {"median_seconds", number(median(m_seconds))}};
+  }
+  return summary;
 }
 
 void write_bench_report(const std::vector<BenchRecord>& records, const std::string& out_dir,
@@ -378,7 +496,8 @@ void write_bench_report(const std::vector<BenchRecord>& records, const std::stri
   fs::create_directories(dir);
   nlohmann::json all = nlohmann::json::array();
   std::ostringstream csv;
-  csv << "name,scenario,seed,tolerance,exit_code,success,verified,controller_only,cycles,steps,"
+  csv << "name,scenario,seed,tolerance,method,exit_code,success,verified,controller_only,cycles,"
+         "steps,"
          "nodes,seconds,"
          "perception,planning,"
          "closing,verification,total,min_open_linking,max_open_linking,min_virtual_linking,"
@@ -386,11 +505,12 @@ void write_bench_report(const std::vector<BenchRecord>& records, const std::stri
   for (const auto& r : records) {
     all.push_back(record_json(r));
     csv << csv_text(r.name) << ',' << csv_text(r.scenario) << ',' << r.seed << ','
-        << fixed(r.tolerance, 2) << ',' << r.exit_code << ',' << r.success << ',' << r.verified
-        << ',' << r.controller_only << ',' << r.cycles << ',' << r.steps << ',' << r.nodes << ','
-        << fixed(r.seconds, 4) << ',' << fixed(r.perception, 4) << ',' << fixed(r.planning, 4)
-        << ',' << fixed(r.closing, 4) << ',' << fixed(r.verification, 4) << ',' << fixed(r.total, 4)
-        << ',' << fixed(r.min_open_linking, 4) << ',' << fixed(r.max_open_linking, 4) << ','
+        << fixed(r.tolerance, 2) << ',' << csv_text(r.method) << ',' << r.exit_code << ','
+        << r.success << ',' << r.verified << ',' << r.controller_only << ',' << r.cycles << ','
+        << r.steps << ',' << r.nodes << ',' << fixed(r.seconds, 4) << ',' << fixed(r.perception, 4)
+        << ',' << fixed(r.planning, 4) << ',' << fixed(r.closing, 4) << ','
+        << fixed(r.verification, 4) << ',' << fixed(r.total, 4) << ','
+        << fixed(r.min_open_linking, 4) << ',' << fixed(r.max_open_linking, 4) << ','
         << fixed(r.min_virtual_linking, 4) << ',' << fixed(r.max_virtual_linking, 4) << ','
         << fixed(r.final_linking, 4) << ',' << csv_text(r.reason) << '\n';
   }
@@ -401,6 +521,10 @@ void write_bench_report(const std::vector<BenchRecord>& records, const std::stri
   write_png(dir / "time_per_case.png", time_per_case(main_runs(records)));
   const auto sweep = sweep_runs(records);
   if (!sweep.empty()) write_png(dir / "tolerance_sweep.png", tolerance_sweep(sweep));
+  for (const auto& method : methods(records)) {
+    write_png(dir / (method + "_time.png"),
+              method_time(main_runs(records), method_runs(records, method), method));
+  }
 }
 
 std::vector<BenchRecord> read_bench_cases(const std::string& path) {

@@ -17,7 +17,8 @@ struct BenchRecord {
   std::uint64_t seed = 1;
   /// > 0: a run of the tolerance sweep (BenchCase::tolerance), reported apart from the others.
   double tolerance = 0.0;
-  int exit_code = 0;  ///< as `claspplan run` would exit
+  std::string method;  ///< empty: TS-RRT; else the baseline (BenchCase::method)
+  int exit_code = 0;   ///< as `claspplan run` would exit
   bool success = false;
   bool verified = false;
   bool controller_only = false;  ///< the clasp controller alone: success = its goal reached
@@ -40,13 +41,15 @@ nlohmann::json record_json(const BenchRecord& r);
 /// Throws std::invalid_argument when a field is missing or of the wrong type.
 BenchRecord record_from_json(const nlohmann::json& j);
 
-/// {cases, success, verified, median_seconds, max_seconds} over the records outside the tolerance
-/// sweep (seconds of the runs that achieved what they were for: see BenchRecord::achieved()).
+/// {cases, success, verified, median_seconds, max_seconds} over TS-RRT's records outside the
+/// tolerance sweep (seconds of the runs that achieved what they were for: see
+/// BenchRecord::achieved()); and per baseline run, an object {cases, success, verified,
+/// median_seconds} under its name.
 nlohmann::json bench_summary(const std::vector<BenchRecord>& records);
 
 /// Writes cases.json, cases.csv, report.md, time_per_case.png, linking_scatter.png and, with sweep
-/// runs, tolerance_sweep.png into out_dir (created if needed). Throws std::runtime_error when a
-/// file cannot be written.
+/// runs, tolerance_sweep.png, with baseline runs <method>_time.png, into out_dir (created if
+/// needed). Throws std::runtime_error when a file cannot be written.
 void write_bench_report(const std::vector<BenchRecord>& records, const std::string& out_dir,
                         const std::string& title);
 

@@ -33,6 +33,10 @@ std::vector<double> paper_tolerances() {
   return {0.5, 0.65, 0.70, 0.75};
 }
 
+std::vector<std::string> bench_baselines() {
+  return {"grasp_rrt", "ompl_two_phase"};
+}
+
 std::vector<std::string> bench_suites() {
   return {"quick", "real", "paper"};
 }
@@ -61,14 +65,20 @@ std::vector<BenchCase> suite_cases(const std::string& suite, const std::string& 
   std::sort(files.begin(), files.end());
   std::vector<BenchCase> cases;
   for (const auto& [name, path] : files) {
-    for (int s = 1; s <= seeds; ++s) cases.push_back({name, path, static_cast<std::uint64_t>(s)});
+    for (int s = 1; s <= seeds; ++s)
+      cases.push_back({name, path, static_cast<std::uint64_t>(s), 0.0, ""});
   }
   if (suite == "paper") {
     for (double t : paper_tolerances()) {
       for (const auto& [name, path] : files) {
-        if (name.find("_1_") != std::string::npos) cases.push_back({name, path, 1, t});  // pose 1
+        if (name.find("_1_") != std::string::npos)
+          cases.push_back({name, path, 1, t, ""});  // pose 1
       }
     }
+  }
+  if (suite == "quick" || suite == "paper") {
+    for (const auto& method : bench_baselines())
+      for (const auto& [name, path] : files) cases.push_back({name, path, 1, 0.0, method});
   }
   return cases;
 }
@@ -80,7 +90,8 @@ std::vector<BenchCase> file_cases(const std::vector<std::string>& files, int see
     std::error_code ec;
     if (!fs::is_regular_file(file, ec)) throw InputError(file + ": no such scenario file");
     for (int s = 1; s <= seeds; ++s)
-      cases.push_back({fs::path(file).stem().string(), file, static_cast<std::uint64_t>(s)});
+      cases.push_back(
+          {fs::path(file).stem().string(), file, static_cast<std::uint64_t>(s), 0.0, ""});
   }
   return cases;
 }

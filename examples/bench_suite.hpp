@@ -16,7 +16,13 @@ struct BenchCase {
   /// > 0: a run of the virtual-linking tolerance sweep (paper Sec. V-C, Fig. 8): the tree's goal
   /// tolerance set to this, the first goal node taken and verified afterwards (not in the search).
   double tolerance = 0.0;
+  /// The search: empty for TS-RRT, or a baseline of bench_baselines().
+  std::string method;
 };
+
+/// The baselines `claspplan bench` runs beside TS-RRT on the same scenarios: grasp_rrt
+/// (examples/grasp_rrt.hpp) and ompl_two_phase (examples/ompl_two_phase.hpp).
+std::vector<std::string> bench_baselines();
 
 /// The tolerances of the paper's sweep (Fig. 8).
 std::vector<double> paper_tolerances();
@@ -26,6 +32,7 @@ std::vector<double> paper_tolerances();
 ///  - real: real/*.yaml, the public meshes of real objects;
 ///  - paper: <object>_<pose>_<hand>.yaml and chair_obstructed_<hand>.yaml (paper Sec. V), then
 ///    the tolerance sweep: each <object>_1_<hand> at seed 1 with each of paper_tolerances().
+/// Then, for quick and paper, each baseline on every scenario at seed 1.
 std::vector<std::string> bench_suites();
 
 /// The cases of `suite` with seeds 1..seeds, sorted by name then seed. Throws

@@ -15,6 +15,8 @@
 #include "examples/bench_report.hpp"
 #include "examples/bench_suite.hpp"
 #include "examples/command.hpp"
+#include "examples/grasp_rrt.hpp"
+#include "examples/ompl_two_phase.hpp"
 #include "examples/run_scenario.hpp"
 #include "perception/input_error.hpp"
 
@@ -60,6 +62,7 @@ BenchRecord run_case(const BenchCase& c, const BenchOptions& o, const fs::path& 
   r.scenario = c.scenario;
   r.seed = c.seed;
   r.tolerance = c.tolerance;
+  r.method = c.method;
   RunOptions run;
   run.out_dir = dir.string();
   run.seed = c.seed;
@@ -68,6 +71,15 @@ BenchRecord run_case(const BenchCase& c, const BenchOptions& o, const fs::path& 
   if (o.time_limit > 0) run.time_limit = o.time_limit;
   if (o.max_cycles > 0) run.max_cycles = o.max_cycles;
   run.controller_only = o.controller_only;
+  if (c.method == "ompl_two_phase") {
+    run.search = [](const tsrrt::ClaspScene& scene, tsrrt::ClaspResult& result) {
+      ompl_two_phase(scene, result);
+    };
+  } else if (c.method == "grasp_rrt") {
+    run.search = [](const tsrrt::ClaspScene& scene, tsrrt::ClaspResult& result) {
+      grasp_rrt(scene, result);
+    };
+  }
   nlohmann::json summary;
   try {
     Scenario scenario = load_scenario(c.scenario);
@@ -153,6 +165,7 @@ std::vector<BenchRecord> run_cases(const std::vector<BenchCase>& cases, const Be
     for (std::size_t i; (i = next++) < cases.size();) {
       std::string stem = cases[i].name;
       for (char& ch : stem) ch = ch == '/' ? '_' : ch;
+      if (!cases[i].method.empty()) stem += "_" + cases[i].method;
       if (cases[i].tolerance > 0) {
         char tolerance[32];
         std::snprintf(tolerance, sizeof tolerance, "_tolerance%.2f", cases[i].tolerance);
@@ -180,9 +193,11 @@ int run_bench(const BenchOptions& o) {
       const auto part = read_bench_cases((fs::path(dir) / "cases.json").string());
       records.insert(records.end(), part.begin(), part.end());
     }
-    // The suites' order: the runs by name and seed, then the sweep's by tolerance and name.
+    // The suites' order: TS-RRT's runs by name and seed, the sweep's by tolerance and name, then
+    // the baselines' by method and name.
     std::stable_sort(records.begin(), records.end(), [](const auto& a, const auto& b) {
-      return std::tie(a.tolerance, a.name, a.seed) < std::tie(b.tolerance, b.name, b.seed);
+      return std::tie(a.method, a.tolerance, a.name, a.seed) <
+             std::tie(b.method, b.tolerance, b.name, b.seed);
     });
     title = "claspplan bench: " + std::to_string(o.merge.size()) + " outputs merged";
   } else {

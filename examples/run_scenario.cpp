@@ -88,6 +88,7 @@ tsrrt::ClaspRequest clasp_request(const Scenario& s, const RunOptions& options,
   request.planning = s.planning;
   request.mode =
       options.controller_only ? tsrrt::ClaspMode::kControllerOnly : tsrrt::ClaspMode::kPlan;
+  request.search = options.search;
   request.seed = options.seed;
   request.max_cycles = options.max_cycles;
   request.time_limit = options.time_limit;

@@ -22,6 +22,7 @@ struct RunOptions {
   /// then do not depend on the machine's speed or load.
   std::optional<int> max_cycles;
   bool controller_only = false;
+  tsrrt::ClaspSearch search;  ///< replaces TS-RRT when set (the benchmark's baselines)
   bool pictures = true;
   bool quiet = false;  ///< no progress lines on stderr
 };

@@ -206,6 +206,13 @@ ClaspResult plan_clasp(const ClaspRequest& request) {
   if (request.mode == ClaspMode::kControllerOnly) {
     say("running the controller alone toward the nearest clasp target ...");
     run_controller_only(request, controller, world, goal_linking, r);
+  } else if (request.search) {
+    SecureClaspChecker checker(model, r.collision_mesh.vertices, r.collision_mesh.triangles,
+                               planning.secure);
+    const auto t0 = Clock::now();
+    request.search({model, world, controller, checker, loop, goal_linking, planning}, r);
+    r.timings.search = since(t0);
+    r.timings.planning = r.timings.search - r.timings.closing - r.timings.verification;
   } else {
     run_search(planning, loop, controller, world, goal_linking, say, r);
   }

@@ -47,6 +47,25 @@ enum class ClaspMode {
   kControllerOnly,  ///< the clasp controller alone toward the nearest clasp target, no search
 };
 
+struct ClaspResult;
+
+/// The scene plan_clasp() builds around the chosen loop, handed to a search that replaces
+/// TS-RRT (ClaspRequest::search: the benchmark's baselines run in the same pipeline, with the
+/// same perception, collision model, finger closing and secure-clasp check).
+struct ClaspScene {
+  const robots::RobotModel& robot;
+  robots::CollisionWorld& world;       ///< robot, object and environment
+  servo::ClaspController& controller;  ///< bound to the loop and its clasp targets
+  SecureClaspChecker& checker;         ///< the secure-clasp check of this object
+  const perception::Loop& loop;
+  double goal_linking;                   ///< what the closed hand must reach (mean |VLk|)
+  const ClaspPlanningOptions& planning;  ///< closing, check, seed and limits
+};
+
+/// A search in place of TS-RRT: from result.start, fills result.motion.waypoints (start to the
+/// closed hand), success, verified, reason, verification, statistics and timings.search.
+using ClaspSearch = std::function<void(const ClaspScene&, ClaspResult&)>;
+
 struct ClaspRequest {
   /// The robot (arm and hand); required. Shared, so that many requests use one model.
   std::shared_ptr<const robots::RobotModel> robot;
@@ -66,6 +85,7 @@ struct ClaspRequest {
   servo::ControllerParameters controller;
   servo::ControllerRunOptions controller_run;  ///< kControllerOnly; its goal_linking is replaced
   ClaspPlanningOptions planning;               ///< kPlan
+  ClaspSearch search;  ///< kPlan: replaces TS-RRT when set (the benchmark's baselines)
 
   ClaspMode mode = ClaspMode::kPlan;
   /// When given, replaces the seed of every stage (perception, planner, pruning, verification);

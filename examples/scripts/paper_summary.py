@@ -26,6 +26,8 @@ def main():
     except OSError as e:
         print(f"paper_summary: {e}", file=sys.stderr)
         return 2
+    # TS-RRT's runs only: not the tolerance sweep's, not the baselines'.
+    rows = [r for r in rows if r.get("tolerance", "0.00") in ("0.00", "-") and not r.get("method")]
     cases = [r for r in rows if not r["name"].startswith("chair_obstructed")]
     verified = [r for r in cases if r["verified"] == "1"]
     cycles = [int(r["cycles"]) for r in verified]

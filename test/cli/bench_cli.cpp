@@ -20,11 +20,15 @@ TEST(BenchSuite, ShardsPartitionTheCasesInOrder) {
     dir.write(std::string(name) + ".yaml", "name: x\n");
   }
   const auto cases = cli::suite_cases("quick", dir.path().string(), 3);
-  ASSERT_EQ(cases.size(), 9u);  // 3 matching files (not purse_1_kuka, not other) x 3 seeds
+  // 3 matching files (not purse_1_kuka, not other) x 3 seeds, then each baseline at seed 1.
+  ASSERT_EQ(cases.size(), 9u + 3u * cli::bench_baselines().size());
   EXPECT_EQ(cases.front().name, "jug_icub");
   EXPECT_EQ(cases.front().seed, 1u);
-  EXPECT_EQ(cases.back().name, "purse_1_dlr");
-  EXPECT_EQ(cases.back().seed, 3u);
+  EXPECT_EQ(cases[8].name, "purse_1_dlr");
+  EXPECT_EQ(cases[8].seed, 3u);
+  EXPECT_EQ(cases[9].name, "jug_icub");
+  EXPECT_EQ(cases[9].method, cli::bench_baselines()[0]);
+  EXPECT_EQ(cases.back().seed, 1u);
 
   std::multiset<std::string> seen;
   for (int k = 1; k <= 4; ++k) {
@@ -39,11 +43,13 @@ TEST(BenchSuite, ShardsPartitionTheCasesInOrder) {
   EXPECT_THROW(cli::shard_cases(cases, "0/4"), std::invalid_argument);
   EXPECT_THROW(cli::shard_cases(cases, "5/4"), std::invalid_argument);
   EXPECT_THROW(cli::shard_cases(cases, "1-4"), std::invalid_argument);
-  // purse_1_dlr at seed 1, then at seed 1 with each tolerance of the sweep.
+  // purse_1_dlr at seed 1, then at seed 1 with each tolerance of the sweep, then the baselines.
   const auto paper = cli::suite_cases("paper", dir.path().string(), 1);
-  ASSERT_EQ(paper.size(), 1u + cli::paper_tolerances().size());
+  const std::size_t tolerances = cli::paper_tolerances().size();
+  ASSERT_EQ(paper.size(), 1u + tolerances + cli::bench_baselines().size());
   EXPECT_EQ(paper[0].tolerance, 0.0);
-  for (std::size_t i = 1; i < paper.size(); ++i) {
+  EXPECT_EQ(paper.back().method, cli::bench_baselines().back());
+  for (std::size_t i = 1; i <= tolerances; ++i) {
     EXPECT_EQ(paper[i].name, "purse_1_dlr");
     EXPECT_EQ(paper[i].tolerance, cli::paper_tolerances()[i - 1]);
   }
@@ -107,6 +113,7 @@ TEST(BenchCli, QuickSuiteShardsMergeIntoOneReport) {
                  "--out", dir.file(std::string("shard") + k), "--json"});
     ASSERT_EQ(part.exit_code, 0) << part.err;
     EXPECT_EQ(part.json()["cases"], 4);
+    for (const auto& method : cli::bench_baselines()) EXPECT_EQ(part.json()[method]["cases"], 4);
     verified += part.json()["verified"].get<int>();
   }
   const CliResult r = run_cli({"bench", "--merge", dir.file("shard1"), dir.file("shard2"), "--out",
@@ -118,18 +125,33 @@ TEST(BenchCli, QuickSuiteShardsMergeIntoOneReport) {
   EXPECT_GE(verified, 6) << r.out;
   EXPECT_GT(s["median_seconds"].get<double>(), 0.0);
   EXPECT_GE(s["max_seconds"].get<double>(), s["median_seconds"].get<double>());
+  // The baselines on the same 8 scenarios, in the summary with their own keys.
+  for (const auto& method : cli::bench_baselines()) {
+    const json& b = s[method];
+    EXPECT_EQ(b["cases"], 8) << method;
+    for (const char* key : {"success", "verified", "median_seconds"})
+      EXPECT_TRUE(b.contains(key)) << method << " " << key;
+    EXPECT_LE(b["verified"].get<int>(), b["success"].get<int>()) << method;
+    EXPECT_TRUE(std::filesystem::exists(dir.file("all/" + method + "_time.png"))) << method;
+  }
+  // When written (seed 1): the two-phase planner verified 7 of 8 clasps; Grasp-RRT scored 8
+  // grasps, none a clasp (paper Sec. V-D: under 5 %).
+  EXPECT_GE(s["ompl_two_phase"]["verified"].get<int>(), 4);
+  EXPECT_GE(s["grasp_rrt"]["success"].get<int>(), 4);
+  EXPECT_LE(s["grasp_rrt"]["verified"].get<int>(), 2);
   for (const char* f :
        {"report.md", "cases.csv", "cases.json", "linking_scatter.png", "time_per_case.png"}) {
     EXPECT_TRUE(std::filesystem::exists(dir.file(std::string("all/") + f))) << f;
   }
   const auto records = cli::read_bench_cases(dir.file("all/cases.json"));
-  ASSERT_EQ(records.size(), 8u);
+  ASSERT_EQ(records.size(), 8u * (1 + cli::bench_baselines().size()));
   for (std::size_t i = 0; i < records.size(); ++i) {
     const auto& rec = records[i];
-    if (i > 0) {
-      EXPECT_LT(records[i - 1].name, rec.name);  // merged in name order
+    EXPECT_EQ(rec.method, i < 8 ? "" : cli::bench_baselines()[i / 8 - 1]);
+    if (i % 8 != 0) {
+      EXPECT_LT(records[i - 1].name, rec.name);  // merged in name order, per method
     }
-    EXPECT_EQ(rec.exit_code, rec.verified ? 0 : 1) << rec.name;
+    EXPECT_EQ(rec.exit_code, (rec.method.empty() ? rec.verified : rec.success) ? 0 : 1) << rec.name;
     if (rec.verified) {
       EXPECT_GT(rec.min_open_linking, 0.0) << rec.name;
       EXPECT_LE(rec.min_virtual_linking, rec.max_virtual_linking) << rec.name;
