@@ -179,18 +179,16 @@ class TsRrt {
     return near;
   }
 
-  // Alg. 3 from the nearest node not yet used for goal g; an attempt that ends against the object,
-  // stuck, or at a goal node the clasp check rejects is followed by a detour (the controller
-  // would bring the next attempt from nearby to the same rejected pose).
+  // Alg. 3 from the nearest node not yet used for goal g. An attempt that fails (in contact with
+  // the object, the environment or the robot itself, stuck, or at a goal node the clasp check
+  // rejects) is followed by a detour: from nearby, the controller would bring the next attempt
+  // the same way (a loop just above the floor is approached from the side, not from above).
   void connect(int g) {
     const int near = tree_.nearest(goals_[g], [&](int i) { return tried_[g].count(i) == 0; });
     if (near < 0) return;
     std::vector<int> nodes;
     const Ending ending = attempt(g, near, nodes);
-    if (ending == Ending::kObject || ending == Ending::kStall || ending == Ending::kJointLimits ||
-        ending == Ending::kRejected) {
-      detour(g, nodes);
-    }
+    if (ending != Ending::kAccepted && ending != Ending::kTimeLimit) detour(g, nodes);
   }
 
   // Another approach direction after a failed attempt along `nodes`: back off along the attempt,

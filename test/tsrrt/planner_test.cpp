@@ -255,6 +255,23 @@ TEST(TsRrt, ContactWithTheObjectLeadsToAnotherApproach) {
       << f.reason;
 }
 
+// Contact with the environment (the wall between start and goal) is followed by a detour too: a
+// loop just above the floor needs an approach from the side.
+TEST(TsRrt, ContactWithTheEnvironmentLeadsToAnotherApproach) {
+  ToyProblem toy;                                         // the wall: x in (0.4, 0.6), y < 0.8
+  toy.detours = {{Eigen::Vector3d(0.3, 1.6, 0.0), 0.0}};  // from there the goal is in sight
+  auto p = detour_parameters();
+  p.detour_steps = 80;  // around the wall's end
+  const auto r = tsrrt::build_ts_rrt(toy, kStart, kGoalBehindObject, p);
+  ASSERT_TRUE(r.success) << r.reason;
+  EXPECT_GE(r.outcomes.contact_environment, 1);
+  EXPECT_GE(r.outcomes.detours, 1);
+  ToyProblem plain;  // without approach points nothing leads around the wall
+  const auto f = tsrrt::build_ts_rrt(plain, kStart, kGoalBehindObject, p);
+  EXPECT_FALSE(f.success);
+  EXPECT_EQ(f.outcomes.detours, 0);
+}
+
 // A goal node the clasp check rejects is followed by a detour: from nearby, the controller would
 // bring the next attempt to the same rejected pose.
 TEST(TsRrt, ARejectedGoalNodeLeadsToAnotherApproach) {
