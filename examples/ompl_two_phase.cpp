@@ -114,8 +114,10 @@ void ompl_two_phase(const tsrrt::ClaspScene& scene, tsrrt::ClaspResult& r,
     return;
   }
 
-  // Phase 2: RRTConnect from the start to any of the goals.
-  ompl::msg::setLogLevel(ompl::msg::LOG_NONE);
+  // Phase 2: RRTConnect from the start to any of the goals. OMPL's log level is process-wide: set
+  // once, also when several benchmark runs start at the same time.
+  static const bool quiet = (ompl::msg::setLogLevel(ompl::msg::LOG_NONE), true);
+  (void)quiet;
   auto space = std::make_shared<ob::RealVectorStateSpace>(dof);
   ob::RealVectorBounds bounds(dof);
   for (int j = 0; j < dof; ++j) {

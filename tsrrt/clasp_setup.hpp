@@ -63,7 +63,8 @@ struct ClaspScene {
 };
 
 /// A search in place of TS-RRT: from result.start, fills result.motion.waypoints (start to the
-/// closed hand), success, verified, reason, verification, statistics and timings.search.
+/// closed hand), success, verified, reason, verification, statistics, and timings.closing and
+/// timings.verification (plan_clasp times the whole search).
 using ClaspSearch = std::function<void(const ClaspScene&, ClaspResult&)>;
 
 struct ClaspRequest {

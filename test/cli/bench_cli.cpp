@@ -1,7 +1,9 @@
 // `claspplan bench`: suites and shards, the quick suite end to end, merging shard outputs, and
 // its bad-input answers.
+#include <cmath>
 #include <filesystem>
 #include <set>
+#include <tuple>
 
 #include <gtest/gtest.h>
 
@@ -157,6 +159,23 @@ TEST(BenchCli, QuickSuiteShardsMergeIntoOneReport) {
       EXPECT_LE(rec.min_virtual_linking, rec.max_virtual_linking) << rec.name;
       EXPECT_GT(rec.verification, 0.0) << rec.name;
     }
+  }
+  // The unsharded run gives the same records in the same order (bounded by cycles, every run
+  // depends on its seed only; the seconds do not take part).
+  const CliResult whole =
+      run_cli({"bench", "--suite", "quick", "--jobs", "2", "--out", dir.file("whole"), "--json"});
+  ASSERT_EQ(whole.exit_code, 0) << whole.err;
+  EXPECT_EQ(whole.json()["verified"], s["verified"]);
+  const auto unsharded = cli::read_bench_cases(dir.file("whole/cases.json"));
+  ASSERT_EQ(unsharded.size(), records.size());
+  for (std::size_t i = 0; i < records.size(); ++i) {
+    const auto &a = records[i], &b = unsharded[i];
+    EXPECT_EQ(std::tie(a.name, a.seed, a.method, a.exit_code, a.verified, a.cycles, a.nodes),
+              std::tie(b.name, b.seed, b.method, b.exit_code, b.verified, b.cycles, b.nodes))
+        << a.name << " " << a.method;
+    EXPECT_TRUE(a.final_linking == b.final_linking ||
+                (std::isnan(a.final_linking) && std::isnan(b.final_linking)))
+        << a.name << " " << a.method;
   }
 }
 
