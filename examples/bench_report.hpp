@@ -43,8 +43,8 @@ BenchRecord record_from_json(const nlohmann::json& j);
 
 /// {cases, success, verified, median_seconds, max_seconds} over TS-RRT's records outside the
 /// tolerance sweep (seconds of the runs that achieved what they were for: see
-/// BenchRecord::achieved()); and per baseline run, an object {cases, success, verified,
-/// median_seconds} under its name.
+/// BenchRecord::achieved()); and for each of bench_baselines() an object {cases, success,
+/// verified, median_seconds} under its name (0 cases when it did not run).
 nlohmann::json bench_summary(const std::vector<BenchRecord>& records);
 
 /// Writes cases.json, cases.csv, report.md, time_per_case.png, linking_scatter.png and, with sweep

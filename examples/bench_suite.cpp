@@ -76,10 +76,8 @@ std::vector<BenchCase> suite_cases(const std::string& suite, const std::string& 
       }
     }
   }
-  if (suite == "quick" || suite == "paper") {
-    for (const auto& method : bench_baselines())
-      for (const auto& [name, path] : files) cases.push_back({name, path, 1, 0.0, method});
-  }
+  for (const auto& method : bench_baselines())
+    for (const auto& [name, path] : files) cases.push_back({name, path, 1, 0.0, method});
   return cases;
 }
 

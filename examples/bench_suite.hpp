@@ -32,7 +32,7 @@ std::vector<double> paper_tolerances();
 ///  - real: real/*.yaml, the public meshes of real objects;
 ///  - paper: <object>_<pose>_<hand>.yaml and chair_obstructed_<hand>.yaml (paper Sec. V), then
 ///    the tolerance sweep: each <object>_1_<hand> at seed 1 with each of paper_tolerances().
-/// Then, for quick and paper, each baseline on every scenario at seed 1.
+/// Then each baseline on every scenario of the suite at seed 1.
 std::vector<std::string> bench_suites();
 
 /// The cases of `suite` with seeds 1..seeds, sorted by name then seed. Throws

@@ -1,6 +1,7 @@
 // `claspplan bench --suite quick|real|paper | SCENARIO... [--seeds N] [--jobs N] [--shard K/N]
 // [--out DIR] [--json]` and `claspplan bench --merge DIR...`: runs a suite's scenarios over seeds
 // through the same pipeline as `claspplan run` and writes a report (examples/bench_report.hpp).
+#include <algorithm>
 #include <atomic>
 #include <chrono>
 #include <cstdio>
@@ -203,6 +204,11 @@ int run_bench(const BenchOptions& o) {
   } else {
     std::vector<BenchCase> cases =
         o.files.empty() ? suite_cases(o.suite, o.scenarios, o.seeds) : file_cases(o.files, o.seeds);
+    if (o.controller_only) {  // the baselines are searches: nothing to run them against
+      cases.erase(std::remove_if(cases.begin(), cases.end(),
+                                 [](const BenchCase& c) { return !c.method.empty(); }),
+                  cases.end());
+    }
     if (!o.shard.empty()) cases = shard_cases(cases, o.shard);
     if (!o.json) {
       progress("bench: " + (o.files.empty() ? "suite " + o.suite : "scenario files") + ", " +

@@ -91,6 +91,7 @@ TEST(BenchReport, SweepRunsHaveTheirOwnSectionAndStayOutOfTheSummary) {
   const json s = cli::bench_summary(records);
   EXPECT_EQ(s["cases"], 1);
   EXPECT_EQ(s["max_seconds"].get<double>(), 0.4);
+  for (const auto& method : cli::bench_baselines()) EXPECT_EQ(s[method]["cases"], 0) << method;
   TempDir dir;
   cli::write_bench_report(records, dir.file("out"), "t");
   const std::string md = slurp(dir.file("out/report.md"));
