@@ -180,6 +180,27 @@ TEST(BenchCli, QuickSuiteShardsMergeIntoOneReport) {
   }
 }
 
+// Each baseline once, briefly (one shard holds one case): cheap enough to run sanitized, where the
+// quick suite as a whole is too slow.
+TEST(BenchCli, EachBaselineRunsOneScenario) {
+  TempDir dir;
+  const std::size_t per_method = 8;  // quick: purse_1 and jug, 4 hands each
+  for (std::size_t m = 0; m < cli::bench_baselines().size(); ++m) {
+    const std::string method = cli::bench_baselines()[m];
+    const std::string shard = std::to_string(per_method * (m + 1) + 1) + "/" +
+                              std::to_string(per_method * (cli::bench_baselines().size() + 1));
+    const CliResult r = run_cli({"bench", "--suite", "quick", "--shard", shard, "--max-cycles",
+                                 "40", "--out", dir.file(method), "--json"});
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    EXPECT_EQ(r.json()["cases"], 0) << method;
+    EXPECT_EQ(r.json()[method]["cases"], 1) << method;
+    const auto records = cli::read_bench_cases(dir.file(method + "/cases.json"));
+    ASSERT_EQ(records.size(), 1u);
+    EXPECT_EQ(records[0].method, method);
+    EXPECT_FALSE(records[0].reason.empty());
+  }
+}
+
 TEST(BenchCli, BadInputIsExitTwoWithAReason) {
   TempDir dir;
   for (const std::vector<std::string>& args :
