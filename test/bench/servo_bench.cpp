@@ -1,4 +1,6 @@
 // Kernels of the linking core (issue 2 budgets in the comments).
+#include <memory>
+
 #include <benchmark/benchmark.h>
 
 #include "robots/robot_model.hpp"
@@ -101,19 +103,30 @@ namespace {
 // One TS-CONTROL step (Alg. 4) for kr5_icub, 21 joints: FK and finger-curve Jacobians, the three
 // features with their Jacobians, and the hierarchy. Budget: 50 µs. The ring passes through the
 // hand, so the linking task is active.
+// kr5_icub at home with a 15 cm ring through its open hand and 12 clasp targets on the ring.
+struct IcubRing {
+  robots::RobotModel model = robots::load_robot("kr5_icub");
+  Eigen::Vector3d centre, forward;
+  std::unique_ptr<servo::ClaspController> controller;  // refers to `model`: IcubRing stays put
+  IcubRing() {
+    servo::ClaspController probe(model, hundred_segment_loop(),
+                                 {{Eigen::Vector3d(5, 0, 0), Eigen::Vector3d::UnitY()}});
+    centre = probe.project(model.home).position;
+    const servo::HandKinematics& hand = probe.hand();
+    forward = hand.forward;
+    const Curve ring = circle(centre + 0.15 * forward, 0.15, -forward, hand.sideways, 100);
+    std::vector<servo::ClaspTarget> targets;
+    for (int i = 0; i < 12; ++i) targets.push_back({ring[i * 8], hand.sideways});
+    controller = std::make_unique<servo::ClaspController>(model, ring, targets);
+  }
+};
+
 void BM_ControlStepIcub(benchmark::State& state) {
-  const robots::RobotModel model = robots::load_robot("kr5_icub");
-  servo::ClaspController probe(model, hundred_segment_loop(),
-                               {{Eigen::Vector3d(5, 0, 0), Eigen::Vector3d::UnitY()}});
-  const Eigen::Vector3d centre = probe.project(model.home).position;
-  const servo::HandKinematics& hand = probe.hand();
-  const Curve ring = circle(centre + 0.15 * hand.forward, 0.15, -hand.forward, hand.sideways, 100);
-  std::vector<servo::ClaspTarget> targets;
-  for (int i = 0; i < 12; ++i) targets.push_back({ring[i * 8], hand.sideways});
-  servo::ClaspController controller(model, ring, targets);
+  IcubRing scene;
+  servo::ClaspController& controller = *scene.controller;
   for (auto _ : state) {
     controller.forget_direction();  // else the features at the same q are kept, not recomputed
-    benchmark::DoNotOptimize(controller.step(model.home, centre, 1.0));
+    benchmark::DoNotOptimize(controller.step(scene.model.home, scene.centre, 1.0));
   }
 }
 BENCHMARK(BM_ControlStepIcub);
@@ -123,21 +136,14 @@ BENCHMARK(BM_ControlStepIcub);
 // projection are kept for the next step (one kinematics per step); 1: recomputed there, as before
 // (two per step). Time per step = real time / 40.
 void BM_SearchStepsIcub(benchmark::State& state) {
-  const robots::RobotModel model = robots::load_robot("kr5_icub");
-  servo::ClaspController probe(model, hundred_segment_loop(),
-                               {{Eigen::Vector3d(5, 0, 0), Eigen::Vector3d::UnitY()}});
-  const Eigen::Vector3d centre = probe.project(model.home).position;
-  const servo::HandKinematics& hand = probe.hand();
-  const Curve ring = circle(centre + 0.15 * hand.forward, 0.15, -hand.forward, hand.sideways, 100);
-  std::vector<servo::ClaspTarget> targets;
-  for (int i = 0; i < 12; ++i) targets.push_back({ring[i * 8], hand.sideways});
-  servo::ClaspController controller(model, ring, targets);
+  IcubRing scene;
+  servo::ClaspController& controller = *scene.controller;
   const bool twice = state.range(0) == 1;
   for (auto _ : state) {
     controller.forget_direction();
-    Eigen::VectorXd q = model.home;
+    Eigen::VectorXd q = scene.model.home;
     for (int s = 0; s < 40; ++s) {
-      q = controller.step(q, centre + 0.15 * hand.forward, 1.0);
+      q = controller.step(q, scene.centre + 0.15 * scene.forward, 1.0);
       benchmark::DoNotOptimize(controller.project(q).linking);
       if (twice) controller.forget_direction();
     }
