@@ -142,20 +142,23 @@ double bar_at(const PointIndex& index, const std::vector<DepthView>& views,
       diameter = std::max(diameter, (slab[blob[i]] - slab[blob[j]]).norm());
   }
   centre = p + centre / static_cast<double>(blob.size());
-  // Where the fingers go: 12 places around the bar; at most one may be doubtful (noise).
+  // Where the fingers go: 12 places around the bar; at most one may hold material or lie below
+  // the support (noise). A bar seen from one side hides part of its back from every camera: up to
+  // a quarter of the ring may be unseen (a handle's back: 1-3 places). More means the material's
+  // extent is unknown (a wall seen from its top hides 4-6: it may reach down to the support).
   const Eigen::Vector3d u1 = t.unitOrthogonal(), u2 = t.cross(u1);
   const double ring = 0.5 * diameter + 0.5 * finger + 0.5 * link;
-  int doubtful = 0;
+  int blocked = 0, hidden = 0;
   for (int k = 0; k < 12; ++k) {
     const double a = 2.0 * M_PI * k / 12.0;
     const Eigen::Vector3d q = centre + ring * (std::cos(a) * u1 + std::sin(a) * u2);
     const bool material = index.count_within(q, 0.5 * finger, 1) > 0;
-    const bool hidden = !views.empty() && seen_from(views, q, 0.005) == Seen::kBlocked;
     const bool below = support && (support->head<3>().dot(q) + (*support)[3]) <
                                       0.5 * finger * support->head<3>().norm();
-    doubtful += material || hidden || below;
+    blocked += material || below;
+    hidden += !material && !below && !views.empty() && seen_from(views, q, 0.005) == Seen::kBlocked;
   }
-  return doubtful > 1 ? kInf : diameter;
+  return blocked > 1 || hidden > 3 ? kInf : diameter;
 }
 
 void measure_bar(Loop& loop, const PointIndex& index, const std::vector<DepthView>& views,

@@ -21,7 +21,8 @@
 //  - hand fit (only when a hand's sizes are given): the hole must be wider than the fingers
 //    (finger thickness + 5 mm; checked with the hole width, first) -> else "too narrow for this
 //    hand"; the bar (the material the loop runs along, measured across the loop at 48 places, with
-//    room for the closed fingers around it) must fit inside the closed hand at three places at
+//    room for the closed fingers around it: no material there, and at most a quarter of it unseen
+//    by every camera, as a handle's back is) must fit inside the closed hand at three places at
 //    least -> else "bar too thick for this hand".
 //  - otherwise claspable.
 // Order: claspable loops first, the best fit for the hand first (widest hole without a hand); then

@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include "examples/objects.hpp"
+#include "examples/scenario.hpp"
 #include "perception/depth_render.hpp"
 #include "perception/file_io.hpp"
 #include "perception/pipeline.hpp"
@@ -66,6 +67,47 @@ TEST(LoopChoice, JugHandleIsChosenAndItsMouthRejectedForEveryHand) {
     // Targets lie on the handle, where the closed hand fits around it.
     ASSERT_FALSE(m.targets.empty());
     for (const auto& t : m.targets) EXPECT_GT(t.p.y(), 0.055) << hand;
+  }
+}
+
+// The shipped pitcher (examples/meshes, YCB) turned so that both cameras see its handle's front
+// only: the handle's back is hidden, yet its bar is measured and it is the iCub's loop (its hole,
+// 3 cm, is too narrow for the other hands' fingers). At 2,000 points the hole is near the
+// resolution (d' = 2.2 cm): at one of the scenario's seeds 1-4 (seed 2) it fills in at d' and is
+// dropped as unstable; the test asks for 3 of 4.
+TEST(LoopChoice, AHandleSeenFromTheFrontOnlyIsMeasuredAndChosen) {
+  cli::Scenario s =
+      cli::load_scenario(std::string(CLASPPLAN_SCENARIOS) + "/real/pitcher_icub.yaml");
+  const robots::HandSize size = robots::hand_size(robots::load_robot(s.robot));
+  int chosen = 0;
+  for (unsigned seed = 1; seed <= 4; ++seed) {
+    s.seed = seed;
+    perception::PerceptionOptions o = s.perception;
+    o.seed = seed;
+    o.finger_thickness = size.finger_thickness;
+    o.closed_aperture = size.closed_aperture;
+    const perception::ObjectModel m = perception::build_object_model(cli::scenario_inputs(s), o);
+    const perception::Loop* best = m.best();
+    if (best == nullptr) continue;
+    EXPECT_GT(best->centre.z(), 0.12) << seed;  // the handle is on the pitcher's upper half
+    EXPECT_LT(best->bar_thickness, 0.03) << seed;
+    ++chosen;
+  }
+  EXPECT_GE(chosen, 3);
+}
+
+// Holes through a 19 cm block, like a cinder block's cores: from above, a core's rim shows a thin
+// top face and hides the wall below it. The top face is never taken for a bar a hand closes on.
+TEST(LoopChoice, AWallSeenFromItsTopIsNotABar) {
+  objects::HoledPlate block;
+  block.holes = 2;
+  block.hole_radius = 0.05;
+  block.thickness = 0.19;
+  block.margin = 0.03;
+  const auto in = seen_on_floor(objects::holed_plate(block));
+  for (const std::string& hand : kHands) {
+    for (const auto& l : perceive(in, hand).loops)
+      EXPECT_TRUE(!l.claspable || l.bar_thickness > 0.09) << hand << ": " << l.reason;
   }
 }
 
