@@ -67,7 +67,10 @@ json outcomes_json(const tsrrt::ConnectOutcomes& o) {
           {"step_cap", o.step_cap},
           {"time_limit", o.time_limit},
           {"detours", o.detours},
-          {"extend_collisions", o.extend_collisions}};
+          {"extend_collisions", o.extend_collisions},
+          {"sampled", o.sampled},
+          {"sampled_clasps", o.sampled_clasps},
+          {"joined", o.joined}};
 }
 
 // The request for the scenario: the run options replace its seed and search bound.

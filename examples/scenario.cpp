@@ -301,12 +301,31 @@ Scenario read_scenario(const YamlField& root, const std::string& path,
       ctl.integer("stall_steps", s.controller_run.stall_steps, 1, 1000000);
 
   const Reader pl = r.child("planner");
-  pl.only({"random_probability",   "pre_expansions",  "max_cycles",       "time_limit",
-           "extend_steps",         "connect_steps",   "stall_steps",      "linking_scale",
-           "sample_min",           "sample_max",      "goal_linking",     "position_tolerance",
-           "collision_resolution", "prune_attempts",  "closing_step",     "closing_clearance",
-           "verify_sequences",     "verify_motions",  "verify_in_search", "backoff_steps",
-           "detour_steps",         "closable_linking"});
+  pl.only({"random_probability",
+           "pre_expansions",
+           "max_cycles",
+           "time_limit",
+           "extend_steps",
+           "connect_steps",
+           "stall_steps",
+           "linking_scale",
+           "sample_min",
+           "sample_max",
+           "goal_linking",
+           "position_tolerance",
+           "collision_resolution",
+           "prune_attempts",
+           "closing_step",
+           "closing_clearance",
+           "verify_sequences",
+           "verify_motions",
+           "verify_in_search",
+           "backoff_steps",
+           "detour_steps",
+           "closable_linking",
+           "sample_probability",
+           "sample_after",
+           "joint_step"});
   auto& o = s.planning;
   auto& tp = o.planner;
   tp.random_probability = pl.number("random_probability", tp.random_probability, 0.0, 1.0);
@@ -318,6 +337,9 @@ Scenario read_scenario(const YamlField& root, const std::string& path,
   tp.stall_steps = pl.integer("stall_steps", tp.stall_steps, 1, 1000000);
   tp.backoff_steps = pl.integer("backoff_steps", tp.backoff_steps, 0, 1000000);
   tp.detour_steps = pl.integer("detour_steps", tp.detour_steps, 0, 1000000);
+  tp.sample_probability = pl.number("sample_probability", tp.sample_probability, 0.0, 1.0);
+  tp.sample_after = pl.integer("sample_after", tp.sample_after, 0, 1000000);
+  tp.joint_step = pl.number("joint_step", tp.joint_step, 1e-4, 10.0);
   tp.linking_scale = pl.number("linking_scale", tp.linking_scale, 0.0, 100.0);
   if (pl.has("sample_min") != pl.has("sample_max")) {
     pl.fail("sample_min", "give both sample_min and sample_max, or neither");

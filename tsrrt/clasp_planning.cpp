@@ -5,6 +5,7 @@
 
 #include <Eigen/Geometry>
 
+#include "perception/random_draws.hpp"
 #include "robots/kinematics.hpp"
 #include "servo/linking.hpp"
 
@@ -58,6 +59,20 @@ MotionCheck ClaspProblem::check_motion(const Eigen::VectorXd& q0, const Eigen::V
   if (report.second == "object") return MotionCheck::kObject;
   if (report.second_link >= 0) return MotionCheck::kSelf;
   return MotionCheck::kEnvironment;  // "box <i>", "cylinder <i>"
+}
+
+bool ClaspProblem::sample_configuration(const std::function<std::uint64_t()>& bits,
+                                        Eigen::VectorXd& q) {
+  const robots::RobotModel& model = controller_.model();
+  for (int draw = 0; draw < 20; ++draw) {
+    q = model.home;
+    for (int j = 0; j < model.arm_dof; ++j) {
+      const robots::Joint& joint = model.joints[j];
+      q[j] = joint.lower + uniform01(bits()) * (joint.upper - joint.lower);
+    }
+    if (!world_.in_collision(q)) return true;
+  }
+  return false;
 }
 
 std::vector<Eigen::Vector3d> clasp_approaches(const servo::Points& loop,

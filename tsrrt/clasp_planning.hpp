@@ -41,6 +41,10 @@ class ClaspProblem final : public PlanningProblem {
   MotionCheck check_motion(const Eigen::VectorXd& q0, const Eigen::VectorXd& q1) override;
   bool reached(const TaskPoint& x, const TaskPoint& goal) const override;
   bool accept(const Eigen::VectorXd& q) override { return !acceptance_ || acceptance_(q); }
+  /// Arm joints uniform within their limits, the hand open (its pre-shape), collision-free: up
+  /// to 20 draws.
+  bool sample_configuration(const std::function<std::uint64_t()>& bits,
+                            Eigen::VectorXd& q) override;
   /// Detour points of clasp target p with unit tangent t (see clasp_approaches()), at
   /// approach_distance() from p.
   std::vector<TaskPoint> approaches(int goal) override;

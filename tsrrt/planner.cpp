@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
+#include <limits>
+#include <optional>
 #include <random>
 #include <set>
 
@@ -95,8 +97,39 @@ std::string describe(const ConnectOutcomes& o) {
     text += "; " + std::to_string(o.rejected) + " reached the goal but were rejected";
   }
   text += "; " + std::to_string(o.detours) + (o.detours == 1 ? " detour" : " detours");
+  if (o.sampled > 0) {
+    text += "; " + std::to_string(o.sampled) + " approaches from sampled configurations (" +
+            std::to_string(o.sampled_clasps) + " reached a clasp)";
+  }
   return text;
 }
+
+// An attempt's progress toward its goal: one that gains neither approach nor linking for
+// stall_steps steps is stuck, at the joint limits when the controller held joints in most of them.
+class Progress {
+ public:
+  Progress(const TaskPoint& x, const TaskPoint& goal)
+      : distance_((x.position - goal.position).norm()), linking_(x.linking) {}
+
+  /// After a step to x (`held`: the controller held a joint at its limit): how the attempt ends
+  /// when it is stuck, else nothing.
+  std::optional<Ending> update(const TaskPoint& x, const TaskPoint& goal, bool held,
+                               const PlannerParameters& p) {
+    const double distance = (x.position - goal.position).norm();
+    const bool progress =
+        distance < distance_ - p.stall_position || x.linking > linking_ + p.stall_linking;
+    distance_ = std::min(distance_, distance);
+    linking_ = std::max(linking_, x.linking);
+    stalled_ = progress ? 0 : stalled_ + 1;
+    limited_ = progress ? 0 : limited_ + (held ? 1 : 0);
+    if (stalled_ < p.stall_steps) return std::nullopt;
+    return 2 * limited_ >= stalled_ ? Ending::kJointLimits : Ending::kStall;
+  }
+
+ private:
+  double distance_, linking_;
+  int stalled_ = 0, limited_ = 0;
+};
 
 class TsRrt {
  public:
@@ -117,8 +150,23 @@ class TsRrt {
     for (int i = 0; i < p_.pre_expansions && !out_of_time(); ++i) extend(random_sample());
     for (result_.cycles = 1; result_.cycles <= p_.max_cycles; ++result_.cycles) {
       if (out_of_time()) break;
+      if (!branches_.empty()) {
+        join();
+        if (result_.success) break;
+      }
       if (uniform01(rng_()) < p_.random_probability) {
         extend(random_sample());
+        continue;
+      }
+      // (No draw in the first cycles: a search that ends there is the paper's, unchanged.)
+      if (result_.cycles > p_.sample_after && p_.sample_probability > 0.0 &&
+          uniform01(rng_()) < p_.sample_probability) {
+        // As many approaches as a cycle has connect attempts.
+        for (std::size_t g = 0; g < goals_.size() && !result_.success && !out_of_time(); ++g) {
+          sample_approach();
+          if (!branches_.empty()) join();
+        }
+        if (result_.success) break;
         continue;
       }
       for (std::size_t g = 0; g < goals_.size() && !result_.success && !out_of_time(); ++g) {
@@ -221,9 +269,7 @@ class TsRrt {
     const TaskPoint& goal = goals_[g];
     tried_[g].insert(near);
     nodes.push_back(near);
-    double best_distance = (tree_[near].x.position - goal.position).norm();
-    double best_linking = tree_[near].x.linking;
-    int stalled = 0, limited = 0;
+    Progress progress(tree_[near].x, goal);
     for (int s = 0; s < p_.connect_steps; ++s) {
       if (out_of_time()) return Ending::kTimeLimit;
       const Eigen::VectorXd q_new = problem_.control(tree_[near].q, tree_[near].x, goal);
@@ -247,19 +293,123 @@ class TsRrt {
         std::reverse(result_.solution_nodes.begin(), result_.solution_nodes.end());
         return Ending::kAccepted;
       }
-      const double distance = (x_new.position - goal.position).norm();
-      const bool progress = distance < best_distance - p_.stall_position ||
-                            x_new.linking > best_linking + p_.stall_linking;
-      best_distance = std::min(best_distance, distance);
-      best_linking = std::max(best_linking, x_new.linking);
-      stalled = progress ? 0 : stalled + 1;
-      limited = progress ? 0 : limited + (held ? 1 : 0);
-      // Stuck: at the joint limits when the controller held joints in most of the stalled steps.
-      if (stalled >= p_.stall_steps) {
-        return 2 * limited >= stalled ? Ending::kJointLimits : Ending::kStall;
-      }
+      if (const std::optional<Ending> stuck = progress.update(x_new, goal, held, p_)) return *stuck;
     }
     return Ending::kStepCap;
+  }
+
+  // Goal sampling: one connect attempt from a random configuration toward the goal nearest to
+  // its hand. An accepted clasp adds the attempt to the branches, its goal their root.
+  void sample_approach() {
+    Eigen::VectorXd q;
+    if (!problem_.sample_configuration([this] { return rng_(); }, q)) return;
+    ++result_.outcomes.sampled;
+    std::vector<Eigen::VectorXd> chain{q};
+    TaskPoint x = problem_.project(q);
+    int g = 0;
+    for (int i = 1; i < static_cast<int>(goals_.size()); ++i) {
+      if ((goals_[i].position - x.position).squaredNorm() <
+          (goals_[g].position - x.position).squaredNorm())
+        g = i;
+    }
+    const TaskPoint& goal = goals_[g];
+    Progress progress(x, goal);
+    for (int s = 0; s < p_.connect_steps && !out_of_time(); ++s) {
+      const Eigen::VectorXd q_new = problem_.control(chain.back(), x, goal);
+      const bool held = problem_.control_limited();
+      ++result_.control_steps;
+      if (problem_.check_motion(chain.back(), q_new) != MotionCheck::kFree) return;
+      x = problem_.project(q_new);
+      chain.push_back(q_new);
+      if (problem_.reached(x, goal)) {
+        if (!problem_.accept(q_new)) return;
+        ++result_.outcomes.sampled_clasps;
+        for (auto it = chain.rbegin(); it != chain.rend(); ++it) {
+          const int parent = it == chain.rbegin() ? -1 : static_cast<int>(branches_.size()) - 1;
+          branches_.push_back({*it, parent, g});
+        }
+        return;
+      }
+      if (progress.update(x, goal, held, p_)) return;
+    }
+  }
+
+  // One iteration of RRT-Connect in joint space between the tree and the branches: one tree takes
+  // a step toward a random configuration, the other connects to the new node; the two alternate.
+  void join() {
+    Eigen::VectorXd q_rand;
+    if (!problem_.sample_configuration([this] { return rng_(); }, q_rand)) return;
+    join_from_tree_ = !join_from_tree_;
+    if (join_from_tree_) {
+      const int a = nearest_configuration(q_rand, false);
+      const int a_new = joint_step(a, q_rand, false);
+      if (a_new < 0) return;
+      const int b = connect_configuration(tree_[a_new].q, true);
+      if (b >= 0) finish(a_new, b);
+    } else {
+      const int b = nearest_configuration(q_rand, true);
+      const int b_new = joint_step(b, q_rand, true);
+      if (b_new < 0) return;
+      const int a = connect_configuration(branches_[b_new].q, false);
+      if (a >= 0) finish(a, b_new);
+    }
+  }
+
+  const Eigen::VectorXd& configuration(int i, bool branch) const {
+    return branch ? branches_[i].q : tree_[i].q;
+  }
+
+  // The node nearest to q in joint space, of the branches or of the tree.
+  int nearest_configuration(const Eigen::VectorXd& q, bool branch) const {
+    const int n = branch ? static_cast<int>(branches_.size()) : tree_.size();
+    int best = 0;
+    double best_d = std::numeric_limits<double>::infinity();
+    for (int i = 0; i < n; ++i) {
+      const double d = (configuration(i, branch) - q).squaredNorm();
+      if (d < best_d) best_d = d, best = i;
+    }
+    return best;
+  }
+
+  // A collision-free joint-space step of at most joint_step per joint from node `from` toward q:
+  // the new node, or -1. A branch node's parent is the node it came from (toward its goal).
+  int joint_step(int from, const Eigen::VectorXd& q, bool branch) {
+    const Eigen::VectorXd& q0 = configuration(from, branch);
+    const double longest = (q - q0).cwiseAbs().maxCoeff();
+    const Eigen::VectorXd q1 =
+        longest <= p_.joint_step ? q : Eigen::VectorXd(q0 + (q - q0) * (p_.joint_step / longest));
+    if (problem_.check_motion(q0, q1) != MotionCheck::kFree) return -1;
+    if (!branch) return tree_.add(q1, problem_.project(q1), from);
+    branches_.push_back({q1, from, branches_[from].goal});
+    return static_cast<int>(branches_.size()) - 1;
+  }
+
+  // Joint-space steps from the nearest node toward q until blocked (-1) or there (that node).
+  int connect_configuration(const Eigen::VectorXd& q, bool branch) {
+    int i = nearest_configuration(q, branch);
+    while (configuration(i, branch) != q) {
+      if (out_of_time()) return -1;
+      i = joint_step(i, q, branch);
+      if (i < 0) return -1;
+    }
+    return i;
+  }
+
+  // Tree node a and branch node b hold the same configuration: the path runs through the tree to
+  // a, then along b's branch to its goal, whose clasp is accepted again (the problem keeps the
+  // clasp it accepted last).
+  void finish(int a, int b) {
+    int root = b;
+    while (branches_[root].parent >= 0) root = branches_[root].parent;
+    if (!problem_.accept(branches_[root].q)) return;
+    ++result_.outcomes.joined;
+    result_.success = true;
+    result_.goal_index = branches_[root].goal;
+    result_.path = tree_.path_to(a);
+    for (int i = branches_[b].parent; i >= 0; i = branches_[i].parent)
+      result_.path.push_back(branches_[i].q);
+    for (int i = a; i >= 0; i = tree_[i].parent) result_.solution_nodes.push_back(i);
+    std::reverse(result_.solution_nodes.begin(), result_.solution_nodes.end());
   }
 
   PlanningProblem& problem_;
@@ -271,6 +421,15 @@ class TsRrt {
   std::vector<std::vector<TaskPoint>> approaches_;  // each goal's detour points, once asked
   std::vector<char> asked_;
   std::vector<std::size_t> next_approach_;  // each goal's next detour point (cycling)
+  // Goal sampling: the sampled attempts that reached an accepted clasp, as a joint-space forest
+  // whose roots are their goal configurations (each node's parent is the next toward its root).
+  struct BranchNode {
+    Eigen::VectorXd q;
+    int parent = -1;
+    int goal = -1;
+  };
+  std::vector<BranchNode> branches_;
+  bool join_from_tree_ = false;
   Clock::time_point start_;
   PlanResult result_;
 };

@@ -1,5 +1,6 @@
-// BUILD-TS-RRT (paper Alg. 1) with TS-EXTEND (Alg. 2) and TS-CONNECT-GOAL (Alg. 3), and the
-// randomized path pruning applied to its solution.
+// BUILD-TS-RRT (paper Alg. 1) with TS-EXTEND (Alg. 2) and TS-CONNECT-GOAL (Alg. 3), extended by
+// detours after failed attempts and by goal sampling (attempts from random configurations, joined
+// to the tree in joint space); and the randomized path pruning applied to its solution.
 #pragma once
 
 #include <cstdint>
@@ -33,6 +34,15 @@ struct PlannerParameters {
   /// extension stops within `detour_reach` metres of the point) and connect to the goal again.
   int detour_steps = 20;
   double detour_reach = 0.01;
+  /// Goal sampling, an extension of Alg. 1: after the first `sample_after` cycles, a cycle with
+  /// this probability runs its connect attempts (one per goal) from random collision-free
+  /// configurations (PlanningProblem::sample_configuration()) instead of from the tree. A clasp
+  /// one reaches is joined to the tree by a joint-space RRT-Connect, one iteration after each
+  /// attempt and at the start of each cycle. It finds clasps whose approach the tree's nearest
+  /// nodes never take (a handle reached past the body). 0: the paper's algorithm.
+  double sample_probability = 0.5;
+  int sample_after = 10;
+  double joint_step = 0.1;  ///< rad: the longest joint move of one joint-space step
   /// RANDOM-TS-SAMPLE: positions uniform in this box (world frame), linking uniform in [0, 1].
   Eigen::Vector3d sample_min = Eigen::Vector3d::Constant(-1.0);
   Eigen::Vector3d sample_max = Eigen::Vector3d::Constant(1.0);
@@ -55,6 +65,11 @@ struct ConnectOutcomes {
   int time_limit = 0;           ///< cut short by the time limit
   int detours = 0;              ///< detours toward an approach point after a failed attempt
   int extend_collisions = 0;    ///< TS-EXTEND steps (random or detour) that ended in a collision
+  /// Goal sampling (not among the attempts above): approaches from sampled configurations, those
+  /// that reached an accepted clasp, and whether one of those was joined to the tree.
+  int sampled = 0;
+  int sampled_clasps = 0;
+  int joined = 0;
 
   /// The sum of the endings (equals `attempts`).
   int endings() const {

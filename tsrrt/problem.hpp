@@ -4,6 +4,8 @@
 // a robot, an object loop and the servo controller.
 #pragma once
 
+#include <cstdint>
+#include <functional>
 #include <vector>
 
 #include <Eigen/Core>
@@ -59,6 +61,16 @@ class PlanningProblem {
   virtual bool accept(const Eigen::VectorXd& q) {
     (void)q;
     return true;
+  }
+
+  /// A random collision-free configuration for goal sampling (planner.hpp, sample_probability),
+  /// drawn with `bits` (a source of uniform 64-bit words); false when the problem offers none
+  /// (the default: the planner then never starts an approach away from its tree).
+  virtual bool sample_configuration(const std::function<std::uint64_t()>& bits,
+                                    Eigen::VectorXd& q) {
+    (void)bits;
+    (void)q;
+    return false;
   }
 
   /// Detour points for goal `goal` (an index into the planner's goals): places from which the

@@ -4,6 +4,8 @@
 #include "tsrrt/planner.hpp"
 
 #include <chrono>
+#include <cstdint>
+#include <functional>
 #include <limits>
 
 #include <gtest/gtest.h>
@@ -274,6 +276,67 @@ TEST(TsRrt, ContactWithTheEnvironmentLeadsToAnotherApproach) {
 
 // A goal node the clasp check rejects is followed by a detour: from nearby, the controller would
 // bring the next attempt to the same rejected pose.
+// A goal in a pocket open only away from the start (walls on its three other sides), and no
+// random extensions: every connect attempt from the tree runs into the pocket's front wall.
+class PocketProblem : public ToyProblem {
+ public:
+  PocketProblem() { wall = false; }
+  bool sampling = true;
+  bool pocket(const Eigen::VectorXd& q) const {
+    const bool front = q[0] > 0.88 && q[0] < 0.92 && std::abs(q[1]) < 0.2;
+    const bool sides = q[0] > 0.88 && q[0] < 1.2 && std::abs(q[1]) > 0.16 && std::abs(q[1]) < 0.2;
+    return front || sides;
+  }
+  tsrrt::MotionCheck check_motion(const Eigen::VectorXd& q0, const Eigen::VectorXd& q1) override {
+    const int n = 1 + static_cast<int>((q1 - q0).head<2>().norm() / 0.005);
+    for (int i = 0; i <= n; ++i) {
+      if (pocket(q0 + (q1 - q0) * (static_cast<double>(i) / n))) return tsrrt::MotionCheck::kObject;
+    }
+    return tsrrt::MotionCheck::kFree;
+  }
+  bool sample_configuration(const std::function<std::uint64_t()>& bits,
+                            Eigen::VectorXd& q) override {
+    if (!sampling) return false;
+    q = Eigen::Vector3d(-0.5 + 2.0 * uniform01(bits()), -1.5 + 3.0 * uniform01(bits()), 0.0);
+    return !pocket(q);
+  }
+};
+
+TEST(TsRrt, GoalSamplingReachesAClaspTheTreeCannotAndJoinsIt) {
+  const std::vector<TaskPoint> goal = {{Eigen::Vector3d(1.0, 0.0, 0.0), 1.0}};
+  auto p = toy_parameters();
+  p.random_probability = 0.0;
+  p.max_cycles = 300;
+  PocketProblem paper;  // Alg. 1 alone
+  paper.sampling = false;
+  const auto without = tsrrt::build_ts_rrt(paper, kStart, goal, p);
+  EXPECT_FALSE(without.success);
+  EXPECT_EQ(without.outcomes.contact_object, without.outcomes.attempts);
+  EXPECT_EQ(without.outcomes.sampled, 0);
+
+  PocketProblem toy;
+  const auto r = tsrrt::build_ts_rrt(toy, kStart, goal, p);
+  ASSERT_TRUE(r.success) << r.reason;
+  EXPECT_GT(r.cycles, p.sample_after);  // no sampling in the first cycles
+  EXPECT_GT(r.outcomes.sampled, 0);
+  EXPECT_GE(r.outcomes.sampled_clasps, 1);
+  EXPECT_EQ(r.outcomes.joined, 1);
+  EXPECT_EQ(r.outcomes.accepted, 0);  // no attempt from the tree got there
+  EXPECT_EQ(r.path.front(), kStart);
+  EXPECT_TRUE(toy.reached(toy.project(r.path.back()), goal[0]));
+  for (std::size_t i = 0; i + 1 < r.path.size(); ++i)
+    EXPECT_TRUE(toy.motion_free(r.path[i], r.path[i + 1])) << "segment " << i;
+  // It came in from the open side.
+  bool behind = false;
+  for (const auto& q : r.path) behind |= q[0] > 1.2;
+  EXPECT_TRUE(behind);
+  // The same seed gives the same plan.
+  PocketProblem again;
+  const auto r2 = tsrrt::build_ts_rrt(again, kStart, goal, p);
+  ASSERT_EQ(r2.path.size(), r.path.size());
+  for (std::size_t i = 0; i < r.path.size(); ++i) EXPECT_EQ(r2.path[i], r.path[i]);
+}
+
 TEST(TsRrt, ARejectedGoalNodeLeadsToAnotherApproach) {
   ToyProblem toy;
   toy.wall = false;
