@@ -8,15 +8,13 @@
 
 #include "perception/random_draws.hpp"
 #include "robots/kinematics.hpp"
+#include "tsrrt/elapsed.hpp"
 
 namespace claspplan::cli {
 namespace {
 
-using Clock = std::chrono::steady_clock;
-
-double since(Clock::time_point t) {
-  return std::chrono::duration<double>(Clock::now() - t).count();
-}
+using tsrrt::Clock;
+using tsrrt::since;
 
 struct Node {
   Eigen::VectorXd q;

@@ -16,17 +16,15 @@
 #include <ompl/util/Console.h>
 
 #include "perception/random_draws.hpp"
+#include "tsrrt/elapsed.hpp"
 
 namespace claspplan::cli {
 namespace {
 
 namespace ob = ompl::base;
 namespace og = ompl::geometric;
-using Clock = std::chrono::steady_clock;
-
-double since(Clock::time_point t) {
-  return std::chrono::duration<double>(Clock::now() - t).count();
-}
+using tsrrt::Clock;
+using tsrrt::since;
 
 // OMPL's samplers draw from per-instance generators seeded here, not from its process-wide seed
 // (which several benchmark runs in one process would share).
@@ -90,19 +88,13 @@ void ompl_two_phase(const tsrrt::ClaspScene& scene, tsrrt::ClaspResult& r,
     r.statistics.control_steps += static_cast<int>(reach.waypoints.size()) - 1;
     if (!reach.success) continue;
     ++reached;
-    Goal g;
-    g.q_open = reach.waypoints.back();
-    g.target = reach.target;
-    auto t = Clock::now();
-    g.q_closed = tsrrt::close_fingers(model, scene.world, g.q_open, scene.planning.closing);
-    r.timings.closing += since(t);
     ++candidates;
-    if (scene.controller.project(g.q_closed).linking < scene.goal_linking) continue;
-    t = Clock::now();
-    g.check = scene.checker.check(g.q_closed, scene.loop.points);
-    r.timings.verification += since(t);
-    last_check = g.check;
-    if (g.check.secure) goals.push_back(std::move(g));
+    const tsrrt::ClaspCandidate c =
+        tsrrt::close_and_check(scene, reach.waypoints.back(), r.timings);
+    if (c.refused) continue;
+    last_check = c.check;
+    if (c.check.secure)
+      goals.push_back({reach.waypoints.back(), c.q_closed, reach.target, c.check});
   }
   r.statistics.clasp_candidates = candidates;
   r.statistics.cycles = starts;

@@ -10,16 +10,14 @@
 #include "examples/command.hpp"
 #include "examples/result_pictures.hpp"
 #include "tsrrt/clasp_setup.hpp"
+#include "tsrrt/elapsed.hpp"
 
 namespace claspplan::cli {
 namespace {
 
-using Clock = std::chrono::steady_clock;
 using nlohmann::json;
-
-double since(Clock::time_point t) {
-  return std::chrono::duration<double>(Clock::now() - t).count();
-}
+using tsrrt::Clock;
+using tsrrt::since;
 
 json to_json(const Eigen::VectorXd& v) {
   return std::vector<double>(v.data(), v.data() + v.size());

@@ -7,16 +7,12 @@
 #include "perception/input_error.hpp"
 #include "perception/mesh.hpp"
 #include "tsrrt/clasp_scene.hpp"
+#include "tsrrt/elapsed.hpp"
 
 namespace claspplan::tsrrt {
 namespace {
 
-using Clock = std::chrono::steady_clock;
 using Say = std::function<void(const std::string&)>;
-
-double since(Clock::time_point t) {
-  return std::chrono::duration<double>(Clock::now() - t).count();
-}
 
 // The planner's default sample box: object and hand start, with 0.3 m of room around them, so
 // that the tree can find its way around obstacles next to the object.
@@ -47,44 +43,29 @@ void run_controller_only(const ClaspRequest& request, servo::ClaspController& co
 
 // TS-RRT with every goal node closed and verified at once (paper Sec. IV-D, V-A); with
 // verify_in_search an insecure clasp is rejected and the search goes on.
-void run_search(ClaspPlanningOptions planning, const perception::Loop& loop,
-                servo::ClaspController& controller, robots::CollisionWorld& world,
-                double goal_linking, const Say& say, ClaspResult& r) {
-  const robots::RobotModel& model = controller.model();
+void run_search(const ClaspScene& scene, const Say& say, ClaspResult& r) {
+  const ClaspPlanningOptions& planning = scene.planning;
   PlannerParameters pp = planning.planner;
   if (!planning.sample_box_given) {
-    fit_sample_box(pp, r.object, controller.project(r.start).position);
+    fit_sample_box(pp, r.object, scene.controller.project(r.start).position);
   }
-  if (pp.time_limit > 0.0) {
-    planning.secure.deadline = Clock::now() + std::chrono::duration_cast<Clock::duration>(
-                                                  std::chrono::duration<double>(pp.time_limit));
-  }
-  Eigen::VectorXd q_closed;
-  SecureClaspReport check;
-  SecureClaspChecker checker(model, r.collision_mesh.vertices, r.collision_mesh.triangles,
-                             planning.secure);
+  ClaspCandidate last;
+  SecureClaspReport check;  // the last check made
   int candidates = 0, screened = 0;
   const auto close_and_verify = [&](const Eigen::VectorXd& q_goal) {
     ++candidates;
-    auto t = Clock::now();
-    q_closed = close_fingers(model, world, q_goal, planning.closing);
-    r.timings.closing += since(t);
-    // A closable pose whose closed hand stays below the goal is no clasp: refused at once.
-    const double closed_linking = controller.project(q_closed).linking;
-    if (closed_linking < goal_linking && planning.verify_in_search) {
+    last = close_and_check(scene, q_goal, r.timings, planning.verify_in_search);
+    if (last.refused) {
       ++screened;
       say("  clasp candidate " + std::to_string(candidates) +
-          ": the closed hand reaches virtual linking " + std::to_string(closed_linking) +
+          ": the closed hand reaches virtual linking " + std::to_string(last.closed_linking) +
           " only; refused");
       return false;
     }
-    say("  clasp candidate " + std::to_string(candidates) + ": fingers closed; verifying (" +
+    say("  clasp candidate " + std::to_string(candidates) + ": fingers closed; verified with " +
         std::to_string(planning.secure.sequences) + " x " +
-        std::to_string(planning.secure.motions) + " random motions of the object) ...");
-    t = Clock::now();
-    bool screened_out = false;
-    check = checker.check(q_closed, loop.points, &screened_out);
-    r.timings.verification += since(t);
+        std::to_string(planning.secure.motions) + " random motions of the object");
+    check = last.check;
     if (check.timed_out && check.escaped_sequences == 0) {
       say("  not verified: the time limit ended the check");
     } else if (check.start_in_collision) {
@@ -92,23 +73,20 @@ void run_search(ClaspPlanningOptions planning, const perception::Loop& loop,
     } else if (!check.secure) {
       say("  rejected: the object got free in " + std::to_string(check.escaped_sequences) + " of " +
           std::to_string(check.sequences) + " sequences" +
-          (screened_out ? " of the screening (the full check's first motions)" : ""));
+          (last.screened_out ? " of the screening (the full check's first motions)" : ""));
     }
     return check.secure || !planning.verify_in_search;
   };
   // The tree stops at a closable pose; finger closing does the rest (paper Sec. V).
   const double tolerance = planning.closable_linking > 0
-                               ? std::min(planning.closable_linking, goal_linking)
-                               : goal_linking;
-  ClaspProblem problem(controller, world, tolerance, planning.position_tolerance,
+                               ? std::min(planning.closable_linking, scene.goal_linking)
+                               : scene.goal_linking;
+  ClaspProblem problem(scene.controller, scene.world, tolerance, planning.position_tolerance,
                        planning.collision_resolution, close_and_verify);
   std::vector<TaskPoint> goals;
-  for (const auto& g : controller.targets()) goals.push_back({g.point, 1.0});  // Alg. 1, line 9
+  for (const auto& g : scene.controller.targets()) goals.push_back({g.point, 1.0});  // Alg. 1, l. 9
   say("planning (TS-RRT, " + std::to_string(goals.size()) + " clasp goals) ...");
-  auto t = Clock::now();
   PlanResult plan = build_ts_rrt(problem, r.start, goals, pp);
-  r.timings.search = since(t);
-  r.timings.planning = r.timings.search - r.timings.closing - r.timings.verification;
 
   ClaspStatistics& s = r.statistics;
   s.cycles = plan.cycles;
@@ -129,10 +107,10 @@ void run_search(ClaspPlanningOptions planning, const perception::Loop& loop,
       std::to_string(plan.nodes) + " nodes; pruning the path ...");
   r.motion.target = plan.goal_index;
   s.unpruned_waypoints = static_cast<int>(plan.path.size());
-  t = Clock::now();
+  const auto t = Clock::now();
   r.motion.waypoints = prune_path(problem, std::move(plan.path), planning.prune_attempts, pp.seed);
   r.timings.pruning = since(t);
-  if (q_closed != r.motion.waypoints.back()) r.motion.waypoints.push_back(q_closed);
+  if (last.q_closed != r.motion.waypoints.back()) r.motion.waypoints.push_back(last.q_closed);
   r.success = r.verified = check.secure;
   r.reason = check.secure ? "verified clasp"
                           : "the clasp failed verification: the object got free in " +
@@ -206,15 +184,24 @@ ClaspResult plan_clasp(const ClaspRequest& request) {
   if (request.mode == ClaspMode::kControllerOnly) {
     say("running the controller alone toward the nearest clasp target ...");
     run_controller_only(request, controller, world, goal_linking, r);
-  } else if (request.search) {
+  } else {
+    // The time limit bounds the search and every clasp check made in it.
+    const auto t0 = Clock::now();
+    if (planning.planner.time_limit > 0.0) {
+      planning.secure.deadline =
+          t0 + std::chrono::duration_cast<Clock::duration>(
+                   std::chrono::duration<double>(planning.planner.time_limit));
+    }
     SecureClaspChecker checker(model, r.collision_mesh.vertices, r.collision_mesh.triangles,
                                planning.secure);
-    const auto t0 = Clock::now();
-    request.search({model, world, controller, checker, loop, goal_linking, planning}, r);
+    const ClaspScene scene{model, world, controller, checker, loop, goal_linking, planning};
+    if (request.search) {
+      request.search(scene, r);
+    } else {
+      run_search(scene, say, r);
+    }
     r.timings.search = since(t0);
     r.timings.planning = r.timings.search - r.timings.closing - r.timings.verification;
-  } else {
-    run_search(planning, loop, controller, world, goal_linking, say, r);
   }
   r.status = r.success ? ClaspStatus::kSuccess : ClaspStatus::kNoClasp;
   if (r.motion.waypoints.empty()) return r;
@@ -226,6 +213,22 @@ ClaspResult plan_clasp(const ClaspRequest& request) {
   r.final_state.finger_virtual_linking = final_state.finger_linking;
   r.final_state.finger_open_linking = open_finger_linking(model, r.motion.final_q, loop.points);
   return r;
+}
+
+ClaspCandidate close_and_check(const ClaspScene& scene, const Eigen::VectorXd& q_open,
+                               ClaspTimings& timings, bool refuse_below_goal) {
+  ClaspCandidate c;
+  auto t = Clock::now();
+  c.q_closed = close_fingers(scene.robot, scene.world, q_open, scene.planning.closing);
+  timings.closing += since(t);
+  // A closable pose whose closed hand stays below the goal is no clasp: refused at once.
+  c.closed_linking = scene.controller.project(c.q_closed).linking;
+  c.refused = refuse_below_goal && c.closed_linking < scene.goal_linking;
+  if (c.refused) return c;
+  t = Clock::now();
+  c.check = scene.checker.check(c.q_closed, scene.loop.points, &c.screened_out);
+  timings.verification += since(t);
+  return c;
 }
 
 robots::CollisionWorld make_collision_world(const robots::RobotModel& robot,

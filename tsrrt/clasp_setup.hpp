@@ -48,6 +48,7 @@ enum class ClaspMode {
 };
 
 struct ClaspResult;
+struct ClaspTimings;
 
 /// The scene plan_clasp() builds around the chosen loop, handed to a search that replaces
 /// TS-RRT (ClaspRequest::search: the benchmark's baselines run in the same pipeline, with the
@@ -61,6 +62,22 @@ struct ClaspScene {
   double goal_linking;                   ///< what the closed hand must reach (mean |VLk|)
   const ClaspPlanningOptions& planning;  ///< closing, check, seed and limits
 };
+
+/// A clasp candidate: the fingers closed at an open pose, and the secure-clasp check of the
+/// closed hand unless it was refused before (its virtual linking below the scene's goal).
+struct ClaspCandidate {
+  Eigen::VectorXd q_closed;
+  double closed_linking = 0.0;  ///< mean |VLk| of the closed hand (eq. 4)
+  bool refused = false;         ///< below the goal linking: no check ran
+  bool screened_out = false;    ///< the check's screening (its first motions) found an escape
+  SecureClaspReport check;
+};
+
+/// Closes the fingers at q_open (close_fingers with the scene's options); refuses a closed hand
+/// below scene.goal_linking when `refuse_below_goal`, else runs scene.checker. Adds the seconds to
+/// timings.closing and timings.verification.
+ClaspCandidate close_and_check(const ClaspScene& scene, const Eigen::VectorXd& q_open,
+                               ClaspTimings& timings, bool refuse_below_goal = true);
 
 /// A search in place of TS-RRT: from result.start, fills result.motion.waypoints (start to the
 /// closed hand), success, verified, reason, verification, statistics, and timings.closing and
