@@ -2,11 +2,16 @@
 
 #include <algorithm>
 
-// nanoflann 1.4's dynamic index trips GCC's -Wmaybe-uninitialized in its own header.
+// nanoflann 1.4's dynamic index trips GCC's -Wmaybe-uninitialized in its own header (clang has
+// no such warning, and warns of the unknown name).
+#if defined(__GNUC__) && !defined(__clang__)
 #pragma GCC diagnostic push
 #pragma GCC diagnostic ignored "-Wmaybe-uninitialized"
+#endif
 #include <nanoflann.hpp>
+#if defined(__GNUC__) && !defined(__clang__)
 #pragma GCC diagnostic pop
+#endif
 
 namespace claspplan::tsrrt {
 
