@@ -44,7 +44,7 @@ class ToyProblem : public tsrrt::PlanningProblem {
     return q;
   }
   bool control_limited() const override { return limited; }
-  tsrrt::MotionCheck collision(const Eigen::VectorXd& q) const {
+  virtual tsrrt::MotionCheck collision(const Eigen::VectorXd& q) const {
     if (wall && q[0] > 0.4 && q[0] < 0.6 && q[1] < 0.8) return tsrrt::MotionCheck::kEnvironment;
     if (object && q[0] > 0.88 && q[0] < 0.92 && std::abs(q[1]) < 0.1) {
       return tsrrt::MotionCheck::kObject;
@@ -282,23 +282,17 @@ class PocketProblem : public ToyProblem {
  public:
   PocketProblem() { wall = false; }
   bool sampling = true;
-  bool pocket(const Eigen::VectorXd& q) const {
+  // The pocket is the object; ToyProblem::check_motion interpolates over it.
+  tsrrt::MotionCheck collision(const Eigen::VectorXd& q) const override {
     const bool front = q[0] > 0.88 && q[0] < 0.92 && std::abs(q[1]) < 0.2;
     const bool sides = q[0] > 0.88 && q[0] < 1.2 && std::abs(q[1]) > 0.16 && std::abs(q[1]) < 0.2;
-    return front || sides;
-  }
-  tsrrt::MotionCheck check_motion(const Eigen::VectorXd& q0, const Eigen::VectorXd& q1) override {
-    const int n = 1 + static_cast<int>((q1 - q0).head<2>().norm() / 0.005);
-    for (int i = 0; i <= n; ++i) {
-      if (pocket(q0 + (q1 - q0) * (static_cast<double>(i) / n))) return tsrrt::MotionCheck::kObject;
-    }
-    return tsrrt::MotionCheck::kFree;
+    return front || sides ? tsrrt::MotionCheck::kObject : tsrrt::MotionCheck::kFree;
   }
   bool sample_configuration(const std::function<std::uint64_t()>& bits,
                             Eigen::VectorXd& q) override {
     if (!sampling) return false;
     q = Eigen::Vector3d(-0.5 + 2.0 * uniform01(bits()), -1.5 + 3.0 * uniform01(bits()), 0.0);
-    return !pocket(q);
+    return !blocked(q);
   }
 };
 
