@@ -134,10 +134,12 @@ PaperScene paper_scene(const std::string& name) {
   s.workspace = Eigen::AlignedBox3d(object_box.min() - Vector3d(0.03, 0.03, 0),
                                     object_box.max() + Vector3d::Constant(0.03));
   s.workspace.min().z() = at.table + 0.004;  // above the support's plane
-  // Two views from the robot's side, far enough to see the whole object; the chair's from lower
-  // down and more from the sides, so that the legs and stretchers under the seat show.
+  // Two views from the robot's side, far enough to see the whole object. The upright chair's
+  // from low down, so that all four loops under its seat show between legs and stretchers (from
+  // 0.35, one of them stayed hidden); the chair on its side from halfway up, over its legs.
   const Vector3d target = object_box.center();
-  const double elevation = object == "chair" ? 0.35 : 0.7;
+  double elevation = 0.7;
+  if (object == "chair") elevation = at.pitch != 0.0 || at.roll != 0.0 ? 0.6 : 0.3;
   const double distance = std::max(1.0, 2.6 * object_box.sizes().norm() / 2);
   for (double side : {-1.0, 1.0}) {
     const Vector3d dir = Vector3d(-0.35, 0.6 * side, elevation).normalized();

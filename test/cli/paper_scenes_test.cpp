@@ -36,8 +36,8 @@ double distance(const json& a, const Eigen::Vector3d& b) {
 
 class PaperScene : public ::testing::TestWithParam<std::string> {};
 
-// The loop count of Fig. 3 among the stable loops seen from the two views and, but for the chairs,
-// among the claspable ones; the loop nearest the clasped hole is claspable.
+// The loop count of Fig. 3 among the stable and among the claspable loops seen from the two views;
+// the loop nearest the clasped hole is claspable.
 TEST_P(PaperScene, LoopsFindsThePapersLoops) {
   const std::string dir = kDepth + "/" + GetParam();
   const json scene = scene_file(GetParam());
@@ -51,14 +51,12 @@ TEST_P(PaperScene, LoopsFindsThePapersLoops) {
                "--camera", dir + "/view_1.yaml", "--crop=" + crop, "--robot", "kr5_sdh", "--json"});
   ASSERT_EQ(r.exit_code, 0) << r.err;
   const json out = r.json();
-  // The paper's loop count among the claspable loops; a chair shows 6 of its 7 (one of the four
-  // loops under the seat is not among K_d's loops from these views: README, "The paper's
-  // experiments").
-  const bool chair = GetParam().rfind("chair", 0) == 0;
-  const int wanted = chair ? 6 : scene["loops"].get<int>();
   int claspable = 0;
   for (const auto& l : out["loops"]) claspable += l["claspable"].get<bool>();
-  EXPECT_GE(claspable, wanted);
+  // The chair on its side: the loop of the face it lies on is refused for a hand (its stretcher
+  // and legs on the floor leave no bar to close around).
+  const int on_floor = GetParam() == "chair_3" ? 1 : 0;
+  EXPECT_GE(claspable, scene["loops"].get<int>() - on_floor);
   EXPECT_GE(out["stable_loops"].get<int>(), scene["loops"].get<int>());
   const Eigen::Vector3d near = point(scene["near"]);
   const json* nearest = nullptr;
