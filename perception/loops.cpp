@@ -264,7 +264,7 @@ void assess(Loop& loop, const PointIndex& index, const Eigen::AlignedBox3d& boun
   if (loop.hole_width < min_hole) {
     loop.verdict = hand ? "hand_too_large" : "too_narrow";
     loop.reason = hand ? "too narrow for this hand: hole " + metres(loop.hole_width) +
-                             " wide < fingers " + metres(options.finger_thickness) + " + 5 mm"
+                             " wide < fingers " + metres(options.finger_thickness) + " + 1 cm"
                        : "too narrow: hole " + metres(loop.hole_width) + " wide < min-hole " +
                              metres(options.min_hole);
     return;

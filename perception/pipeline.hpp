@@ -14,7 +14,7 @@
 //  3. d: given, or automatic_d() = 3.5 x the mean nearest-neighbour spacing of the N points.
 //  4. K_d from the CGAL 3-D Delaunay triangulation; the exact shortest H1 basis over Z2.
 //  5. Only stable loops are kept: a loop whose class is zero in K_d' (d' = persistence x d, and at
-//     least 0.8 x the narrowest hole a finger passes: min_hole, or the hand's fingers + 5 mm if
+//     least 0.8 x the narrowest hole a finger passes: min_hole, or the hand's fingers + 1 cm if
 //     less) is a sampling gap or a thin tube's wall that a coarser scale fills, not a hole a hand
 //     can use; so more points (a smaller d) never mean more loops. Holes a finger can pass survive.
 //  6. Loops ranked (loops.hpp), for the hand if its sizes are given; k clasp targets on the best
