@@ -235,11 +235,7 @@ int run_bench(const BenchOptions& o) {
 
 void add_bench_command(CLI::App& app, Action& action) {
   auto o = std::make_shared<BenchOptions>();
-  CLI::App* cmd = app.add_subcommand(
-      "bench",
-      "Run a suite of scenarios over seeds (the same pipeline as `run`, without pictures) and "
-      "write report.md, cases.csv, cases.json and PNG plots; or merge the outputs of shards. "
-      "Exit 0 when the report is written, 2 on bad input.");
+  CLI::App* cmd = app.add_subcommand("bench", command_description("bench"));
   auto* suite = cmd->add_option("--suite", o->suite,
                                 "quick (purse_1 and jug, all hands), real (real/*), paper "
                                 "(<object>_<pose>_<hand> and chair_obstructed_<hand>)");

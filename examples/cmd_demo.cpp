@@ -59,9 +59,7 @@ int run_demo(DemoOptions& o) {
 void add_demo_command(CLI::App& app, Action& action) {
   auto o = std::make_shared<DemoOptions>();
   o->run.out_dir = "claspplan-demo";
-  CLI::App* cmd = app.add_subcommand(
-      "demo",
-      "Run the embedded default scenario end to end (a few seconds) and write its pictures");
+  CLI::App* cmd = app.add_subcommand("demo", command_description("demo"));
   cmd->add_option("--out", o->run.out_dir, "output folder")->capture_default_str();
   cmd->add_option("--seed", o->seed, "random seed (default: the scenario's)");
   cmd->add_flag("--json", o->json, "print one JSON summary object instead of the text");

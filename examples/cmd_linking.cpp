@@ -66,11 +66,7 @@ int run_linking(const LinkingOptions& o) {
 
 void add_linking_command(CLI::App& app, Action& action) {
   auto o = std::make_shared<LinkingOptions>();
-  CLI::App* cmd = app.add_subcommand(
-      "linking",
-      "Linking number of two closed curves, or virtual linking (eq. 2) of a closed curve A and an "
-      "open curve B with --virtual. Curve files: one 'x y z' per line (metres), '#' comments; a "
-      "closed curve's last point joins its first.");
+  CLI::App* cmd = app.add_subcommand("linking", command_description("linking"));
   cmd->add_option("CURVE_A", o->curve_a, "closed curve file")->required();
   cmd->add_option("CURVE_B", o->curve_b, "curve file (closed, or open with --virtual)")->required();
   cmd->add_flag(

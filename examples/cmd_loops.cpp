@@ -185,12 +185,7 @@ struct RenderOptions {
 
 void add_loops_command(CLI::App& app, Action& action) {
   auto o = std::make_shared<LoopsOptions>();
-  CLI::App* cmd = app.add_subcommand(
-      "loops",
-      "Perception only (paper Sec. IV-A): the object's loops from depth images (PNG + --camera), "
-      "clouds (.pcd .ply .xyz) or meshes (.obj .ply .stl .off); beta1, d, the loops ranked "
-      "best first with their verdicts, and clasp targets on the best loop. Exit 0 for any valid "
-      "input, beta1 = 0 included.");
+  CLI::App* cmd = app.add_subcommand("loops", command_description("loops"));
   cmd->add_option("INPUT", o->inputs,
                   "depth PNGs (16-bit, one --camera each, in order), clouds or meshes")
       ->required();

@@ -40,11 +40,7 @@ int run_render_paper(const RenderPaperOptions& o) {
 
 void add_render_paper_command(CLI::App& app, Action& action) {
   auto o = std::make_shared<RenderPaperOptions>();
-  CLI::App* cmd = app.add_subcommand(
-      "render-paper",
-      "Render the paper's experiment scenes (purse, bag, travel bag, lawn mower, chair in three "
-      "poses, and the obstructed chair) into depth files: DIR/<scene>/view_<i>.png + .yaml and "
-      "scene.json");
+  CLI::App* cmd = app.add_subcommand("render-paper", command_description("render-paper"));
   cmd->add_option("DIR", o->dir, "output directory")->required();
   cmd->add_option("--scene", o->scenes, "only this scene, e.g. chair_2 (repeatable)")
       ->allow_extra_args(false);

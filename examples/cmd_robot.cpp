@@ -140,11 +140,7 @@ int run_robot(const RobotOptions& o) {
 
 void add_robot_command(CLI::App& app, Action& action) {
   auto o = std::make_shared<RobotOptions>();
-  CLI::App* cmd = app.add_subcommand(
-      "robot",
-      "The actuated joints (name, limits, arm or hand), the pose of tool0 and the finger curves "
-      "of a robot at a configuration. NAME is a built-in robot (kr5_sdh, kr5_dlr, kr5_icub, "
-      "kr5_armar3) or the path of a hand-description YAML file.");
+  CLI::App* cmd = app.add_subcommand("robot", command_description("robot"));
   cmd->add_option("NAME", o->robot, "built-in robot or hand-description file")->required();
   cmd->add_option(
       "--q", o->q,

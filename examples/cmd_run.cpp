@@ -22,11 +22,7 @@ struct RunCommandOptions {
 
 void add_run_command(CLI::App& app, Action& action) {
   auto o = std::make_shared<RunCommandOptions>();
-  CLI::App* cmd = app.add_subcommand(
-      "run",
-      "Run a scenario: depth -> loops -> plan -> close the fingers -> prune -> verify. Exit 0 on a "
-      "verified clasp (or, with --controller-only, when the controller reaches the hand's "
-      "virtual-linking goal), 1 when there is none, 2 on bad input.");
+  CLI::App* cmd = app.add_subcommand("run", command_description("run"));
   cmd->add_option("SCENARIO", o->scenario, "scenario file (YAML, see the README)")->required();
   cmd->add_option("--out", o->run.out_dir, "output folder for result.json, timing.json and PNGs")
       ->capture_default_str();

@@ -47,10 +47,7 @@ int run_verify(VerifyOptions o) {
 
 void add_verify_command(CLI::App& app, Action& action) {
   auto o = std::make_shared<VerifyOptions>();
-  CLI::App* cmd = app.add_subcommand(
-      "verify",
-      "The secure-clasp check of a saved result: random translations and rotations of the object "
-      "relative to the closed hand, each pursued until collision. Exit 0 secure, 1 not.");
+  CLI::App* cmd = app.add_subcommand("verify", command_description("verify"));
   cmd->add_option("RESULT", o->result, "a result.json written by claspplan run")->required();
   cmd->add_option("--sequences", o->check.sequences, "sequences of random motions")
       ->check(CLI::Range(1, 1000))

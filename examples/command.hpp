@@ -9,6 +9,7 @@
 
 #include <functional>
 #include <string>
+#include <vector>
 
 #include <CLI/CLI.hpp>
 #include <nlohmann/json.hpp>
@@ -33,6 +34,23 @@ void print_json(const nlohmann::json& object);
 
 /// Progress and notes for humans go to stderr, so that stdout stays clean for --json.
 void progress(const std::string& message);
+
+/// The program's description, the first line of `claspplan --help`.
+const char* program_description();
+
+/// A subcommand's name and its one-line description (what `claspplan --help` lists).
+struct CommandInfo {
+  const char* name;
+  const char* description;
+};
+/// Every subcommand but the hidden helpers, in the order of `claspplan --help`.
+const std::vector<CommandInfo>& command_list();
+/// The description of the subcommand `name` (std::logic_error if there is none).
+const char* command_description(const std::string& name);
+
+/// Parses the command line into `app` (whose subcommands set `action`) and runs the action:
+/// usage errors are exit 2 with the one-line report, --help prints and exits 0.
+int run_app(CLI::App& app, const Action& action, int argc, char** argv);
 
 // One function per subcommand, each in its cmd_<name>.cpp.
 void add_bench_command(CLI::App& app, Action& action);

@@ -1,46 +1,65 @@
 // claspplan: plans a collision-free arm and hand motion that clasps a loop of an object seen in
 // depth data (Stork, Pokorny, Kragic, IROS 2013). See README.md.
+//
+// This is a launcher: it answers `--help` and runs `linking` itself, and starts
+// claspplan-commands (commands_main.cpp) with the same arguments for every other subcommand.
+// Loading the libraries the planner needs (ViSP, PCL, FCL, OpenCV, OMPL: some 50 shared objects)
+// takes about 0.1 s, which these two need not pay.
+#include <cerrno>
+#include <climits>
 #include <cstring>
-#include <iostream>
+#include <string>
+
+#include <unistd.h>
 
 #include "examples/command.hpp"
 
 namespace {
 
-bool wants_json(int argc, char** argv) {
-  for (int i = 1; i < argc; ++i)
-    if (std::strcmp(argv[i], "--json") == 0) return true;
-  return false;
+using namespace claspplan::cli;
+
+// claspplan-commands next to this program (the build folder), or in
+// ../libexec/claspplan/ (an installed prefix).
+std::string commands_program() {
+  char self[PATH_MAX];
+  const ssize_t n = readlink("/proc/self/exe", self, sizeof self - 1);
+  if (n <= 0) return "";
+  const std::string path(self, static_cast<std::size_t>(n));
+  const std::string dir = path.substr(0, path.rfind('/') + 1);
+  for (const std::string& candidate :
+       {dir + "claspplan-commands", dir + "../libexec/claspplan/claspplan-commands"}) {
+    if (access(candidate.c_str(), X_OK) == 0) return candidate;
+  }
+  return "";
+}
+
+bool handled_here(const char* first) {
+  return std::strcmp(first, "linking") == 0 || first[0] == '-';
 }
 
 }  // namespace
 
 int main(int argc, char** argv) {
-  using namespace claspplan::cli;
-  CLI::App app{"claspplan: integrated motion and clasp planning with virtual linking"};
+  if (argc > 1 && !handled_here(argv[1])) {
+    const std::string program = commands_program();
+    if (program.empty())
+      return report_failure(kInternalError,
+                            "internal error: claspplan-commands is not installed next to claspplan",
+                            false);
+    execv(program.c_str(), argv);
+    return report_failure(kInternalError,
+                          "internal error: cannot start " + program + ": " + std::strerror(errno),
+                          false);
+  }
+  CLI::App app{program_description()};
   app.require_subcommand(1);
   app.fallthrough(false);
   Action action;
-  add_demo_command(app, action);
-  add_bench_command(app, action);
-  add_linking_command(app, action);
-  add_robot_command(app, action);
-  add_loops_command(app, action);
-  add_run_command(app, action);
-  add_verify_command(app, action);
-  add_render_paper_command(app, action);
-
-  const bool json = wants_json(argc, argv);
-  try {
-    app.parse(argc, argv);
-  } catch (const CLI::CallForHelp& e) {
-    return app.exit(e);
-  } catch (const CLI::CallForAllHelp& e) {
-    return app.exit(e);
-  } catch (const CLI::ParseError& e) {
-    // CLI11 would exit with 100-127; usage errors are exit 2 here.
-    return report_failure(kBadInput, std::string(e.what()) + " (see --help)", json);
+  for (const auto& c : command_list()) {
+    if (std::strcmp(c.name, "linking") == 0)
+      add_linking_command(app, action);
+    else
+      app.add_subcommand(c.name, c.description);  // listed here, run by claspplan-commands
   }
-
-  return run_action(action, json);
+  return run_app(app, action, argc, argv);
 }

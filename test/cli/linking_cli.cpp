@@ -1,5 +1,8 @@
 // `claspplan linking` and `claspplan demo` as a user runs them.
+#include <cstdlib>
+#include <filesystem>
 #include <sstream>
+#include <utility>
 
 #include <gtest/gtest.h>
 
@@ -95,6 +98,36 @@ TEST(LinkingCli, HelpIsAvailable) {
   EXPECT_EQ(r.exit_code, 0);
   EXPECT_NE(r.out.find("--virtual"), std::string::npos);
   EXPECT_EQ(run_cli({"--help"}).exit_code, 0);
+}
+
+// The launcher answers --help and runs `linking` on its own (neither loads the planner's
+// libraries), and starts claspplan-commands, found next to it, for everything else.
+TEST(Launcher, HelpAndLinkingWithoutTheCommandsProgram) {
+  TempDir dir;
+  const std::string alone = dir.file("claspplan");
+  std::filesystem::copy_file(CLASPPLAN_EXE, alone);
+  std::filesystem::permissions(alone, std::filesystem::perms::owner_all);
+  const auto run = [&](const std::string& args) {
+    const std::string out = dir.file("out"), err = dir.file("err");
+    const int status =
+        std::system((shell_quote(alone) + " " + args + " >" + out + " 2>" + err).c_str());
+    return std::make_pair(WIFEXITED(status) ? WEXITSTATUS(status) : -1, slurp(out) + slurp(err));
+  };
+  const auto help = run("--help");
+  EXPECT_EQ(help.first, 0);
+  for (const char* command : {"demo", "bench", "linking", "robot", "loops", "run", "verify"})
+    EXPECT_NE(help.second.find(std::string("  ") + command + " "), std::string::npos) << command;
+  const auto a = dir.write("a.txt", kSquare), b = dir.write("b.txt", kPiercing);
+  const auto linking = run("linking " + a + " " + b);
+  EXPECT_EQ(linking.first, 0) << linking.second;
+  EXPECT_NE(linking.second.find("Lk(A, B) = 1"), std::string::npos) << linking.second;
+  EXPECT_EQ(run("--bogus").first, 2);
+  // Any other command needs claspplan-commands: an internal error (exit 3), in one line.
+  const auto robot = run("robot kr5_sdh");
+  EXPECT_EQ(robot.first, 3);
+  EXPECT_NE(robot.second.find("claspplan-commands is not installed"), std::string::npos);
+  // Next to the real launcher, the same command runs.
+  EXPECT_EQ(run_cli({"robot", "kr5_sdh"}).exit_code, 0);
 }
 
 }  // namespace

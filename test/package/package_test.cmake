@@ -35,7 +35,8 @@ run_checked("cmake --install" install_log "${CMAKE_COMMAND}" --install "${BUILD_
             --prefix "${prefix}" --config "${BUILD_TYPE}")
 
 # 2. The layout.
-set(expected bin/claspplan lib/cmake/claspplan/claspplanConfig.cmake
+set(expected bin/claspplan libexec/claspplan/claspplan-commands
+    lib/cmake/claspplan/claspplanConfig.cmake
     lib/cmake/claspplan/claspplanConfigVersion.cmake lib/cmake/claspplan/claspplanTargets.cmake
     include/claspplan/tsrrt/clasp_setup.hpp)
 foreach(lib robots perception servo tsrrt)
@@ -110,7 +111,8 @@ foreach(line IN LISTS expected_lines)
   endif()
 endforeach()
 
-# 5. The installed program, on an installed model file.
+# 5. The installed program, on an installed model file (the launcher starts claspplan-commands from
+# libexec).
 run_checked("the installed claspplan" robot_out "${prefix}/bin/claspplan" robot
             "${prefix}/share/claspplan/robots/kr5_icub.yaml")
 if(NOT robot_out MATCHES "^kr5_icub \\(")
