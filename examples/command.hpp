@@ -48,6 +48,9 @@ const std::vector<CommandInfo>& command_list();
 /// The description of the subcommand `name` (std::logic_error if there is none).
 const char* command_description(const std::string& name);
 
+/// Whether the command line asks for --json (then failures are reported as JSON too).
+bool wants_json(int argc, char** argv);
+
 /// Parses the command line into `app` (whose subcommands set `action`) and runs the action:
 /// usage errors are exit 2 with the one-line report, --help prints and exits 0.
 int run_app(CLI::App& app, const Action& action, int argc, char** argv);

@@ -42,14 +42,15 @@ bool handled_here(const char* first) {
 int main(int argc, char** argv) {
   if (argc > 1 && !handled_here(argv[1])) {
     const std::string program = commands_program();
+    const bool json = wants_json(argc, argv);
     if (program.empty())
       return report_failure(kInternalError,
                             "internal error: claspplan-commands is not installed next to claspplan",
-                            false);
+                            json);
     execv(program.c_str(), argv);
     return report_failure(kInternalError,
                           "internal error: cannot start " + program + ": " + std::strerror(errno),
-                          false);
+                          json);
   }
   CLI::App app{program_description()};
   app.require_subcommand(1);
