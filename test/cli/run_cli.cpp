@@ -226,6 +226,16 @@ INSTANTIATE_TEST_SUITE_P(
       return info.param.scenario + "_seed" + std::to_string(info.param.seed);
     });
 
+// The paper's experiments from their committed depth files (examples/depth/), one per hand.
+INSTANTIATE_TEST_SUITE_P(PaperDepthFiles, PlannedClasp,
+                         ::testing::Values(PlannedCase{"bag_1_sdh", 1},
+                                           PlannedCase{"lawnmower_3_dlr", 1},
+                                           PlannedCase{"travelbag_1_icub", 1},
+                                           PlannedCase{"chair_1_armar3", 1}),
+                         [](const auto& info) {
+                           return info.param.scenario + "_seed" + std::to_string(info.param.seed);
+                         });
+
 INSTANTIATE_TEST_SUITE_P(ObstructedLoop, PlannedClasp,
                          ::testing::Values(PlannedCase{"obstructed_ring_sdh", 1},
                                            PlannedCase{"obstructed_ring_dlr", 1}),
