@@ -266,34 +266,45 @@ class TsRrt {
   }
 
   Ending run_attempt(int g, int near, std::vector<int>& nodes) {
-    const TaskPoint& goal = goals_[g];
     tried_[g].insert(near);
     nodes.push_back(near);
-    Progress progress(tree_[near].x, goal);
+    const Ending ending =
+        steer(tree_[near].q, tree_[near].x, goals_[g], [&](const auto& q, const auto& x) {
+          near = tree_.add(q, x, near);
+          nodes.push_back(near);
+          tried_[g].insert(near);  // continuing from it toward g would repeat this attempt
+        });
+    // A rejected goal node stays: continuing from it toward g would only hover there.
+    if (ending == Ending::kRejected) ++result_.rejected_goals;
+    if (ending == Ending::kAccepted) {
+      result_.success = true;
+      result_.goal_index = g;
+      result_.path = tree_.path_to(near);
+      for (int i = near; i >= 0; i = tree_[i].parent) result_.solution_nodes.push_back(i);
+      std::reverse(result_.solution_nodes.begin(), result_.solution_nodes.end());
+    }
+    return ending;
+  }
+
+  // The controller iterated from (q, x) toward `goal` (Alg. 3's inner loop), each collision-free
+  // step handed to `keep(q, x)`, until a collision, the goal (accepted or rejected by the
+  // problem), the step cap, no progress, or the time limit.
+  template <class Keep>
+  Ending steer(Eigen::VectorXd q, TaskPoint x, const TaskPoint& goal, Keep keep) {
+    Progress progress(x, goal);
     for (int s = 0; s < p_.connect_steps; ++s) {
       if (out_of_time()) return Ending::kTimeLimit;
-      const Eigen::VectorXd q_new = problem_.control(tree_[near].q, tree_[near].x, goal);
+      Eigen::VectorXd q_new = problem_.control(q, x, goal);
       const bool held = problem_.control_limited();
       ++result_.control_steps;
-      const MotionCheck check = problem_.check_motion(tree_[near].q, q_new);
+      const MotionCheck check = problem_.check_motion(q, q_new);
       if (check != MotionCheck::kFree) return collision_ending(check);
-      const TaskPoint x_new = problem_.project(q_new);
-      near = tree_.add(q_new, x_new, near);
-      nodes.push_back(near);
-      tried_[g].insert(near);  // continuing from it toward g would repeat this attempt
-      if (problem_.reached(x_new, goal)) {
-        if (!problem_.accept(q_new)) {
-          ++result_.rejected_goals;
-          return Ending::kRejected;  // continuing from here toward g would only hover there
-        }
-        result_.success = true;
-        result_.goal_index = g;
-        result_.path = tree_.path_to(near);
-        for (int i = near; i >= 0; i = tree_[i].parent) result_.solution_nodes.push_back(i);
-        std::reverse(result_.solution_nodes.begin(), result_.solution_nodes.end());
-        return Ending::kAccepted;
-      }
-      if (const std::optional<Ending> stuck = progress.update(x_new, goal, held, p_)) return *stuck;
+      q = std::move(q_new);
+      x = problem_.project(q);
+      keep(q, x);
+      if (problem_.reached(x, goal))
+        return problem_.accept(q) ? Ending::kAccepted : Ending::kRejected;
+      if (const std::optional<Ending> stuck = progress.update(x, goal, held, p_)) return *stuck;
     }
     return Ending::kStepCap;
   }
@@ -304,33 +315,22 @@ class TsRrt {
     Eigen::VectorXd q;
     if (!problem_.sample_configuration([this] { return rng_(); }, q)) return;
     ++result_.outcomes.sampled;
-    std::vector<Eigen::VectorXd> chain{q};
-    TaskPoint x = problem_.project(q);
+    const TaskPoint x = problem_.project(q);
     int g = 0;
     for (int i = 1; i < static_cast<int>(goals_.size()); ++i) {
       if ((goals_[i].position - x.position).squaredNorm() <
           (goals_[g].position - x.position).squaredNorm())
         g = i;
     }
-    const TaskPoint& goal = goals_[g];
-    Progress progress(x, goal);
-    for (int s = 0; s < p_.connect_steps && !out_of_time(); ++s) {
-      const Eigen::VectorXd q_new = problem_.control(chain.back(), x, goal);
-      const bool held = problem_.control_limited();
-      ++result_.control_steps;
-      if (problem_.check_motion(chain.back(), q_new) != MotionCheck::kFree) return;
-      x = problem_.project(q_new);
+    std::vector<Eigen::VectorXd> chain{q};
+    const auto keep = [&](const Eigen::VectorXd& q_new, const TaskPoint&) {
       chain.push_back(q_new);
-      if (problem_.reached(x, goal)) {
-        if (!problem_.accept(q_new)) return;
-        ++result_.outcomes.sampled_clasps;
-        for (auto it = chain.rbegin(); it != chain.rend(); ++it) {
-          const int parent = it == chain.rbegin() ? -1 : static_cast<int>(branches_.size()) - 1;
-          branches_.push_back({*it, parent, g});
-        }
-        return;
-      }
-      if (progress.update(x, goal, held, p_)) return;
+    };
+    if (steer(q, x, goals_[g], keep) != Ending::kAccepted) return;
+    ++result_.outcomes.sampled_clasps;
+    for (auto it = chain.rbegin(); it != chain.rend(); ++it) {
+      const int parent = it == chain.rbegin() ? -1 : static_cast<int>(branches_.size()) - 1;
+      branches_.push_back({*it, parent, g});
     }
   }
 
