@@ -5,6 +5,7 @@
 #include <filesystem>
 #include <fstream>
 #include <iomanip>
+#include <iterator>
 #include <limits>
 #include <map>
 #include <sstream>
@@ -62,26 +63,26 @@ void write_png(const std::filesystem::path& path, const cv::Mat& image) {
 
 const cv::Scalar kGreen(60, 160, 60), kRed(60, 60, 200), kGrey(120, 120, 120), kBlack(0, 0, 0);
 
-std::vector<BenchRecord> main_runs(const std::vector<BenchRecord>& records) {
+template <class Keep>
+std::vector<BenchRecord> select(const std::vector<BenchRecord>& records, Keep keep) {
   std::vector<BenchRecord> out;
-  for (const auto& r : records)
-    if (!(r.tolerance > 0) && r.method.empty()) out.push_back(r);
+  std::copy_if(records.begin(), records.end(), std::back_inserter(out), keep);
   return out;
 }
 
+// TS-RRT's runs at the scenario's own tolerance, those of the tolerance sweep, a baseline's.
+std::vector<BenchRecord> main_runs(const std::vector<BenchRecord>& records) {
+  return select(records,
+                [](const BenchRecord& r) { return !(r.tolerance > 0) && r.method.empty(); });
+}
+
 std::vector<BenchRecord> sweep_runs(const std::vector<BenchRecord>& records) {
-  std::vector<BenchRecord> out;
-  for (const auto& r : records)
-    if (r.tolerance > 0 && r.method.empty()) out.push_back(r);
-  return out;
+  return select(records, [](const BenchRecord& r) { return r.tolerance > 0 && r.method.empty(); });
 }
 
 std::vector<BenchRecord> method_runs(const std::vector<BenchRecord>& records,
                                      const std::string& method) {
-  std::vector<BenchRecord> out;
-  for (const auto& r : records)
-    if (r.method == method) out.push_back(r);
-  return out;
+  return select(records, [&](const BenchRecord& r) { return r.method == method; });
 }
 
 std::vector<std::string> methods(const std::vector<BenchRecord>& records) {
