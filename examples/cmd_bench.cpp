@@ -3,7 +3,6 @@
 // through the same pipeline as `claspplan run` and writes a report (examples/bench_report.hpp).
 #include <algorithm>
 #include <atomic>
-#include <chrono>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -20,6 +19,7 @@
 #include "examples/ompl_two_phase.hpp"
 #include "examples/run_scenario.hpp"
 #include "perception/input_error.hpp"
+#include "tsrrt/elapsed.hpp"
 
 namespace claspplan::cli {
 namespace {
@@ -134,8 +134,7 @@ class Progress {
     std::lock_guard<std::mutex> lock(mutex_);
     ++finished_;
     verified_ += r.verified;
-    const double s =
-        std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
+    const double s = tsrrt::since(start_);
     const int width = 30, filled = total_ > 0 ? width * finished_ / total_ : width;
     std::string bar(filled, '=');
     bar.resize(width, ' ');
@@ -155,7 +154,7 @@ class Progress {
   std::mutex mutex_;
   int total_, finished_ = 0, verified_ = 0;
   bool tty_;
-  std::chrono::steady_clock::time_point start_ = std::chrono::steady_clock::now();
+  tsrrt::Clock::time_point start_ = tsrrt::Clock::now();
 };
 
 std::vector<BenchRecord> run_cases(const std::vector<BenchCase>& cases, const BenchOptions& o) {

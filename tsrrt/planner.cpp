@@ -1,20 +1,18 @@
 #include "tsrrt/planner.hpp"
 
 #include <algorithm>
-#include <chrono>
 #include <cstdio>
 #include <limits>
 #include <optional>
 #include <random>
 #include <set>
 
+#include "tsrrt/elapsed.hpp"
 #include "tsrrt/task_tree.hpp"
 
 namespace claspplan::tsrrt {
 
 namespace {
-
-using Clock = std::chrono::steady_clock;
 
 // How one TS-CONNECT-GOAL attempt ended.
 enum class Ending {
@@ -192,8 +190,7 @@ class TsRrt {
 
  private:
   bool out_of_time() {
-    if (p_.time_limit > 0.0 &&
-        std::chrono::duration<double>(Clock::now() - start_).count() >= p_.time_limit) {
+    if (p_.time_limit > 0.0 && since(start_) >= p_.time_limit) {
       result_.timed_out = true;
     }
     return result_.timed_out;
@@ -276,14 +273,17 @@ class TsRrt {
         });
     // A rejected goal node stays: continuing from it toward g would only hover there.
     if (ending == Ending::kRejected) ++result_.rejected_goals;
-    if (ending == Ending::kAccepted) {
-      result_.success = true;
-      result_.goal_index = g;
-      result_.path = tree_.path_to(near);
-      for (int i = near; i >= 0; i = tree_[i].parent) result_.solution_nodes.push_back(i);
-      std::reverse(result_.solution_nodes.begin(), result_.solution_nodes.end());
-    }
+    if (ending == Ending::kAccepted) succeed(g, near);
     return ending;
+  }
+
+  // The search ends with goal g reached through tree node `node`.
+  void succeed(int g, int node) {
+    result_.success = true;
+    result_.goal_index = g;
+    result_.path = tree_.path_to(node);
+    for (int i = node; i >= 0; i = tree_[i].parent) result_.solution_nodes.push_back(i);
+    std::reverse(result_.solution_nodes.begin(), result_.solution_nodes.end());
   }
 
   // The controller iterated from (q, x) toward `goal` (Alg. 3's inner loop), each collision-free
@@ -403,13 +403,9 @@ class TsRrt {
     while (branches_[root].parent >= 0) root = branches_[root].parent;
     if (!problem_.accept(branches_[root].q)) return;
     ++result_.outcomes.joined;
-    result_.success = true;
-    result_.goal_index = branches_[root].goal;
-    result_.path = tree_.path_to(a);
+    succeed(branches_[root].goal, a);
     for (int i = branches_[b].parent; i >= 0; i = branches_[i].parent)
       result_.path.push_back(branches_[i].q);
-    for (int i = a; i >= 0; i = tree_[i].parent) result_.solution_nodes.push_back(i);
-    std::reverse(result_.solution_nodes.begin(), result_.solution_nodes.end());
   }
 
   PlanningProblem& problem_;
