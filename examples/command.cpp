@@ -54,8 +54,7 @@ const std::vector<CommandInfo>& command_list() {
        "input, beta1 = 0 included."},
       {"run",
        "Run a scenario: depth -> loops -> plan -> close the fingers -> prune -> verify. Exit 0 on "
-       "a "
-       "verified clasp (or, with --controller-only, when the controller reaches the hand's "
+       "a verified clasp (or, with --controller-only, when the controller reaches the hand's "
        "virtual-linking goal), 1 when there is none, 2 on bad input."},
       {"verify",
        "The secure-clasp check of a saved result: random translations and rotations of the object "
