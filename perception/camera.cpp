@@ -253,19 +253,23 @@ void write_depth_png(const DepthImage& image, const CameraModel& camera, const s
 }
 
 std::vector<Eigen::Vector3d> depth_to_points(const DepthView& view) {
-  const CameraModel& c = view.camera;
   std::vector<Eigen::Vector3d> pts;
   pts.reserve(view.image.valid_count());
+  append_depth_points(view, pts);
+  return pts;
+}
+
+void append_depth_points(const DepthView& view, std::vector<Eigen::Vector3d>& out) {
+  const CameraModel& c = view.camera;
   const Eigen::Matrix3d R = c.T_world_camera.linear();
   const Eigen::Vector3d t = c.T_world_camera.translation();
   for (int v = 0; v < view.image.height; ++v) {
     for (int u = 0; u < view.image.width; ++u) {
       const double z = view.image.at(u, v);
       if (!(z > 0.0) || !std::isfinite(z)) continue;
-      pts.push_back(R * Eigen::Vector3d((u - c.cx) * z / c.fx, (v - c.cy) * z / c.fy, z) + t);
+      out.push_back(R * Eigen::Vector3d((u - c.cx) * z / c.fx, (v - c.cy) * z / c.fy, z) + t);
     }
   }
-  return pts;
 }
 
 }  // namespace claspplan::perception

@@ -84,5 +84,7 @@ void write_depth_png(const DepthImage& image, const CameraModel& camera, const s
 
 /// Every valid pixel back-projected to the world frame.
 std::vector<Eigen::Vector3d> depth_to_points(const DepthView& view);
+/// The same, appended to `out` (several views into one cloud without copies).
+void append_depth_points(const DepthView& view, std::vector<Eigen::Vector3d>& out);
 
 }  // namespace claspplan::perception

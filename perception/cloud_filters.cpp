@@ -107,9 +107,12 @@ PointCloud even_subset(const PointCloud& cloud, int count, std::uint64_t seed) {
 }
 
 PlaneRemovalResult remove_supporting_plane(const PointCloud& cloud, const PlaneRemovalOptions& o) {
-  PlaneRemovalResult r;
-  r.kept = cloud;
-  if (cloud.size() < 100) return r;
+  const auto unchanged = [&cloud] {  // the cloud as it is: no plane removed
+    PlaneRemovalResult u;
+    u.kept = cloud;
+    return u;
+  };
+  if (cloud.size() < 100) return unchanged();
   const PointCloud sample = random_subset(cloud, o.ransac_sample, o.seed);
   auto pc = to_pcl(sample);
   pcl::SACSegmentation<pcl::PointXYZ> seg;
@@ -125,13 +128,13 @@ PlaneRemovalResult remove_supporting_plane(const PointCloud& cloud, const PlaneR
   pcl::PointIndices inliers;
   pcl::ModelCoefficients coeffs;
   seg.segment(inliers, coeffs);
-  if (coeffs.values.size() != 4 || inliers.indices.empty()) return r;
+  if (coeffs.values.size() != 4 || inliers.indices.empty()) return unchanged();
   Eigen::Vector4d plane(coeffs.values[0], coeffs.values[1], coeffs.values[2], coeffs.values[3]);
   const double nn = plane.head<3>().norm();
-  if (!(nn > 0) || !plane.allFinite()) return r;
+  if (!(nn > 0) || !plane.allFinite()) return unchanged();
   plane /= nn;
   if (plane.z() < 0) plane = -plane;
-  if (std::acos(std::min(1.0, plane.z())) > o.max_tilt) return r;
+  if (std::acos(std::min(1.0, plane.z())) > o.max_tilt) return unchanged();
   // Large, and the rest of the scene above it: a table, not an object's top face.
   int on = 0, above = 0, below = 0;
   for (const auto& p : cloud) {
@@ -143,9 +146,10 @@ PlaneRemovalResult remove_supporting_plane(const PointCloud& cloud, const PlaneR
     else
       ++below;
   }
-  if (on < o.min_fraction * cloud.size()) return r;
-  if (above + below > 0 && above < o.above_fraction * (above + below)) return r;
-  r.kept.clear();
+  if (on < o.min_fraction * cloud.size()) return unchanged();
+  if (above + below > 0 && above < o.above_fraction * (above + below)) return unchanged();
+  PlaneRemovalResult r;
+  r.kept.reserve(static_cast<size_t>(above));
   for (const auto& p : cloud)
     if (plane.head<3>().dot(p) + plane.w() > o.distance) r.kept.push_back(p);
   r.removed = true;

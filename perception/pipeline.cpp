@@ -117,15 +117,19 @@ Prepared prepare(const PerceptionInputs& in, const PerceptionOptions& o) {
   // Depth: back-projection to the world frame, crop, supporting plane, outliers.
   if (!in.depth_views.empty()) {
     PointCloud depth;
+    size_t valid = 0;
+    for (const auto& v : in.depth_views) valid += v.image.valid_count();
+    depth.reserve(valid);
     for (const auto& v : in.depth_views) {
       validate_camera(v.camera, "camera");
-      const auto pts = depth_to_points(v);
-      depth.insert(depth.end(), pts.begin(), pts.end());
+      append_depth_points(v, depth);
       r.views.push_back(v);
     }
     if (depth.empty()) throw InputError("the depth images have no reading (all 0)");
     r.input_points += static_cast<int>(depth.size());
-    if (crop_to_box(depth, o.workspace).empty())
+    if (!o.workspace.isEmpty() && std::none_of(depth.begin(), depth.end(), [&](const auto& p) {
+          return o.workspace.contains(p);
+        }))
       throw InputError("no depth point lies inside the workspace box");
     if (o.remove_plane) {
       // The support is searched a little below and around the workspace: a crop just above the
