@@ -1,5 +1,5 @@
 // The synthetic depth sensor: exact depth of planes, a sphere's profile, noise statistics,
-// dropout rate, determinism, near-plane clipping and visible-surface sampling.
+// dropout rate, determinism, near-plane clipping, visible-surface sampling and back-projection.
 #include "perception/depth_render.hpp"
 
 #include <cmath>
@@ -7,6 +7,7 @@
 #include <gtest/gtest.h>
 
 #include "examples/objects.hpp"
+#include "perception/camera.hpp"
 
 namespace claspplan::perception {
 namespace {
@@ -42,6 +43,28 @@ TEST(DepthRender, PlaneAtKnownDistanceGivesExactDepth) {
       const double rx = (u - cam.cx) / cam.fx;  // ray (rx, ry, 1): z = 1 + 0.5 z rx
       EXPECT_NEAR(t.at(u, v), 1.0 / (1.0 - 0.5 * rx), 2e-6) << u << "," << v;
     }
+}
+
+// Back-projection: each valid pixel once, on its ray at its depth; a second view appends after
+// the first (the pipeline merges its views this way).
+TEST(DepthRender, BackProjectionPutsEachPixelOnItsRayAndAppendsViews) {
+  DepthView a{camera_at_origin_looking_down_z(40, 30), {}};
+  a.image = render_depth(quad(0.6, 10.0), a.camera);
+  a.image.at(3, 4) = 0.0f;  // a dropout
+  DepthView b = a;
+  b.camera.T_world_camera.translation() = Eigen::Vector3d(0.0, 0.0, 1.0);
+  const auto pa = depth_to_points(a);
+  ASSERT_EQ(pa.size(), static_cast<size_t>(40 * 30 - 1));
+  EXPECT_NEAR(pa.front().x(), (0 - a.camera.cx) * 0.6 / a.camera.fx, 1e-6);
+  EXPECT_NEAR(pa.front().y(), (0 - a.camera.cy) * 0.6 / a.camera.fy, 1e-6);
+  for (const auto& p : pa) EXPECT_NEAR(p.z(), 0.6, 1e-6);
+  std::vector<Eigen::Vector3d> both = pa;
+  append_depth_points(b, both);
+  ASSERT_EQ(both.size(), 2 * pa.size());
+  for (size_t i = 0; i < pa.size(); ++i) {
+    EXPECT_EQ(both[i], pa[i]);
+    EXPECT_NEAR((both[pa.size() + i] - pa[i]).z(), 1.0, 1e-12);
+  }
 }
 
 TEST(DepthRender, SphereDepthProfile) {
