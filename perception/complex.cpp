@@ -29,9 +29,19 @@ SimplicialComplex build_complex(const DelaunayGraph& delaunay, double d) {
       k.edge_length.push_back(delaunay.edge_length[e]);
     }
   }
-  for (const auto& t : delaunay.triangles) {
-    const int a = renumber[t[0]], b = renumber[t[1]], c = renumber[t[2]];
-    if (a >= 0 && b >= 0 && c >= 0) k.triangles.push_back({a, b, c});
+  std::vector<int> triangle_of(delaunay.triangles.size(), -1);
+  for (size_t t = 0; t < delaunay.triangles.size(); ++t) {
+    const auto& e = delaunay.triangles[t];
+    const int a = renumber[e[0]], b = renumber[e[1]], c = renumber[e[2]];
+    if (a >= 0 && b >= 0 && c >= 0) {
+      triangle_of[t] = static_cast<int>(k.triangles.size());
+      k.triangles.push_back({a, b, c});
+    }
+  }
+  for (const auto& f : delaunay.tetrahedron_faces) {
+    const std::array<int, 4> t{triangle_of[f[0]], triangle_of[f[1]], triangle_of[f[2]],
+                               triangle_of[f[3]]};
+    if (t[0] >= 0 && t[1] >= 0 && t[2] >= 0 && t[3] >= 0) k.tetrahedra.push_back(t);
   }
   return k;
 }

@@ -19,6 +19,8 @@ struct DelaunayGraph {
   std::vector<double> edge_length;            ///< per edge
   std::vector<std::array<int, 3>> triangles;  ///< edge ids, per Delaunay facet
   int tetrahedra = 0;
+  /// Each finite tetrahedron's four facets (indices into `triangles`), sorted.
+  std::vector<std::array<int, 4>> tetrahedron_faces;
 };
 
 /// CGAL Delaunay_triangulation_3 with the exact-predicates kernel (Qhull does not scale: design
@@ -33,6 +35,10 @@ struct SimplicialComplex {
   std::vector<std::array<int, 2>> edges;  ///< vertex indices, i < j
   std::vector<double> edge_length;
   std::vector<std::array<int, 3>> triangles;  ///< edge ids (indices into `edges`)
+  /// The Delaunay tetrahedra whose six edges are shorter than d, as their four triangles (indices
+  /// into `triangles`). K_d is the 2-skeleton; these only tell the homology which triangles'
+  /// boundaries are sums of others (a tetrahedron's four faces bound nothing together).
+  std::vector<std::array<int, 4>> tetrahedra;
   double d = 0.0;
 
   int vertex_count() const { return static_cast<int>(points.size()); }

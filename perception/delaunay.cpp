@@ -6,6 +6,7 @@
 #include <CGAL/Delaunay_triangulation_3.h>
 #include <CGAL/Delaunay_triangulation_cell_base_3.h>
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
+#include <CGAL/Triangulation_cell_base_with_info_3.h>
 #include <CGAL/Triangulation_data_structure_3.h>
 #include <CGAL/Triangulation_vertex_base_with_info_3.h>
 
@@ -18,7 +19,10 @@ namespace claspplan::perception {
 namespace {
 using Kernel = CGAL::Exact_predicates_inexact_constructions_kernel;  // exact predicates
 using Vb = CGAL::Triangulation_vertex_base_with_info_3<int, Kernel>;
-using Cb = CGAL::Delaunay_triangulation_cell_base_3<Kernel>;
+// A cell's info: the (pre-sort) index of each of its four facets.
+using Cb =
+    CGAL::Triangulation_cell_base_with_info_3<std::array<int, 4>, Kernel,
+                                              CGAL::Delaunay_triangulation_cell_base_3<Kernel>>;
 using Tds = CGAL::Triangulation_data_structure_3<Vb, Cb>;
 using Delaunay = CGAL::Delaunay_triangulation_3<Kernel, Tds>;
 }  // namespace
@@ -36,7 +40,7 @@ DelaunayGraph delaunay_3d(const PointCloud& points) {
   for (size_t i = 0; i < points.size(); ++i)
     input.emplace_back(Kernel::Point_3(points[i].x(), points[i].y(), points[i].z()),
                        static_cast<int>(i));
-  const Delaunay dt(input.begin(), input.end());  // spatially sorted insertion
+  Delaunay dt(input.begin(), input.end());  // spatially sorted insertion
   if (dt.dimension() < 3)
     throw InputError(dt.dimension() == 2
                          ? "all points are coplanar: K_d needs points that span 3-D"
@@ -64,7 +68,8 @@ DelaunayGraph delaunay_3d(const PointCloud& points) {
   };
   g.edge_length.reserve(g.edges.size());
   for (const auto& e : g.edges) g.edge_length.push_back((points[e[0]] - points[e[1]]).norm());
-  g.triangles.reserve(2 * g.tetrahedra + 16);
+  std::vector<std::pair<std::array<int, 3>, int>> facets;  // edge ids, enumeration index
+  facets.reserve(2 * g.tetrahedra + 16);
   for (auto f = dt.finite_facets_begin(); f != dt.finite_facets_end(); ++f) {
     const int i = f->second;
     const int a = f->first->vertex((i + 1) & 3)->info();
@@ -72,10 +77,27 @@ DelaunayGraph delaunay_3d(const PointCloud& points) {
     const int c = f->first->vertex((i + 3) & 3)->info();
     std::array<int, 3> t{edge_id(a, b), edge_id(b, c), edge_id(a, c)};
     std::sort(t.begin(), t.end());
-    g.triangles.push_back(t);
+    const int k = static_cast<int>(facets.size());
+    facets.emplace_back(t, k);
+    f->first->info()[i] = k;  // both cells that share the facet
+    f->first->neighbor(i)->info()[dt.mirror_index(f->first, i)] = k;
   }
   // CGAL's facet order depends on memory addresses: a canonical order keeps results identical.
-  std::sort(g.triangles.begin(), g.triangles.end());
+  std::sort(facets.begin(), facets.end());
+  std::vector<int> id(facets.size());
+  g.triangles.reserve(facets.size());
+  for (const auto& [t, k] : facets) {
+    id[k] = static_cast<int>(g.triangles.size());
+    g.triangles.push_back(t);
+  }
+  g.tetrahedron_faces.reserve(g.tetrahedra);
+  for (auto c = dt.finite_cells_begin(); c != dt.finite_cells_end(); ++c) {
+    std::array<int, 4> faces;
+    for (int i = 0; i < 4; ++i) faces[i] = id[c->info()[i]];
+    std::sort(faces.begin(), faces.end());
+    g.tetrahedron_faces.push_back(faces);
+  }
+  std::sort(g.tetrahedron_faces.begin(), g.tetrahedron_faces.end());
   return g;
 }
 

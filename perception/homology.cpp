@@ -75,22 +75,36 @@ Annotation annotate(const SimplicialComplex& k, const Graph& g, bool need_annota
   for (size_t i = 0; i < coords.size(); ++i) coord_of[coords[i]] = static_cast<int>(i);
   const int kc = static_cast<int>(coords.size());
   // Triangle boundaries in non-tree coordinates, reduced over Z2 (low-pivot reduction).
-  std::vector<std::vector<int>> columns;
-  columns.reserve(k.triangles.size());
-  for (const auto& t : k.triangles) {
-    std::vector<int> c;
-    for (int e : t)
+  std::vector<std::vector<int>> columns(k.triangles.size());
+  std::vector<int> order;  // the triangles with a non-zero column, in reduction order
+  order.reserve(k.triangles.size());
+  for (size_t t = 0; t < k.triangles.size(); ++t) {
+    auto& c = columns[t];
+    for (int e : k.triangles[t])
       if (coord_of[e] >= 0) c.push_back(coord_of[e]);
     std::sort(c.begin(), c.end());
-    if (!c.empty()) columns.push_back(std::move(c));
+    if (!c.empty()) order.push_back(static_cast<int>(t));
   }
-  std::sort(columns.begin(), columns.end(),
-            [](const std::vector<int>& x, const std::vector<int>& y) {
-              return x.back() != y.back() ? x.back() < y.back() : x < y;
-            });
+  std::sort(order.begin(), order.end(), [&](int i, int j) {
+    const auto &x = columns[i], &y = columns[j];
+    return x.back() != y.back() ? x.back() < y.back() : x < y;
+  });
+  // A tetrahedron's four faces sum to a zero boundary, so the last of them to be reduced is a sum
+  // of columns already seen: it would reduce to zero, and is skipped (the same pivots, far less
+  // work where K_d is thick: most of such a column's additions are spent reaching zero).
+  std::vector<int> position(k.triangles.size(), -1);
+  for (size_t i = 0; i < order.size(); ++i) position[order[i]] = static_cast<int>(i);
+  std::vector<char> dependent(order.size(), 0);
+  for (const auto& tet : k.tetrahedra) {
+    int last = -1;
+    for (int t : tet) last = std::max(last, position[t]);
+    if (last >= 0) dependent[last] = 1;
+  }
   std::vector<int> pivot_of(kc, -1);
   std::vector<std::vector<int>> reduced;
-  for (auto& c : columns) {
+  for (size_t i = 0; i < order.size(); ++i) {
+    if (dependent[i]) continue;
+    auto& c = columns[order[i]];
     while (!c.empty() && pivot_of[c.back()] >= 0)
       c = symmetric_difference(c, reduced[pivot_of[c.back()]]);
     if (c.empty()) continue;

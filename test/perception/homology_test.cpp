@@ -146,6 +146,42 @@ TEST(Homology, FastPathEqualsAllRootsOnRandomComplexes) {
   EXPECT_GT(loops, 500);
 }
 
+// The reduction skips each tetrahedron's last face (its boundary is the sum of the other three):
+// the same loops, classes and persistence verdicts as without the tetrahedra, on thick complexes
+// (d up to 4 times the spacing) where many faces are skipped.
+TEST(Homology, TetrahedraSkipOnlyDependentColumns) {
+  std::mt19937_64 rng(7);
+  std::uniform_real_distribution<double> uni(0.0, 1.0);
+  int with_tetrahedra = 0;
+  for (int trial = 0; trial < 30; ++trial) {
+    PointCloud pts;
+    for (int i = 0; i < 150; ++i) {
+      const double u = 2 * M_PI * uni(rng), v = 2 * M_PI * uni(rng), r = 0.35 * uni(rng);
+      pts.emplace_back((1.0 + r * std::cos(v)) * std::cos(u), (1.0 + r * std::cos(v)) * std::sin(u),
+                       r * std::sin(v));  // a solid torus: tetrahedra everywhere inside
+    }
+    const DelaunayGraph dg = delaunay_3d(pts);
+    const double s = mean_spacing(pts);
+    const SimplicialComplex k = build_complex(dg, (1.5 + 2.5 * uni(rng)) * s);
+    SimplicialComplex bare = k;
+    bare.tetrahedra.clear();
+    with_tetrahedra += !k.tetrahedra.empty();
+    const HomologyBasis a = shortest_homology_basis(k), b = shortest_homology_basis(bare);
+    ASSERT_EQ(a.beta1, b.beta1) << "trial " << trial;
+    ASSERT_EQ(a.cycles.size(), b.cycles.size());
+    std::vector<std::vector<int>> cycles;
+    for (size_t i = 0; i < a.cycles.size(); ++i) {
+      ASSERT_EQ(a.cycles[i].vertices, b.cycles[i].vertices) << "trial " << trial;
+      cycles.push_back(a.cycles[i].vertices);
+    }
+    const SimplicialComplex larger = build_complex(dg, 1.5 * k.d);
+    SimplicialComplex larger_bare = larger;
+    larger_bare.tetrahedra.clear();
+    EXPECT_EQ(bounds_in(larger, cycles), bounds_in(larger_bare, cycles)) << "trial " << trial;
+  }
+  EXPECT_GT(with_tetrahedra, 20);
+}
+
 TEST(Homology, TooManyLoopsIsAnError) {
   PointCloud pts;
   std::mt19937_64 rng(5);
@@ -187,6 +223,11 @@ TEST(Delaunay, RejectsDegenerateInput) {
   EXPECT_EQ(k.edges.size(), 3u);  // the unit edges; the sqrt(2) ones are too long
   EXPECT_EQ(k.triangles.size(), 0u);
   EXPECT_EQ(build_complex(g, 1.5).triangles.size(), 4u);
+  // The tetrahedron as its four facets; in K_d only when all six edges are.
+  ASSERT_EQ(g.tetrahedron_faces.size(), 1u);
+  EXPECT_EQ(g.tetrahedron_faces[0], (std::array<int, 4>{0, 1, 2, 3}));
+  EXPECT_TRUE(k.tetrahedra.empty());
+  EXPECT_EQ(build_complex(g, 1.5).tetrahedra.size(), 1u);
 }
 
 }  // namespace
