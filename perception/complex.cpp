@@ -38,7 +38,7 @@ SimplicialComplex build_complex(const DelaunayGraph& delaunay, double d) {
       k.triangles.push_back({a, b, c});
     }
   }
-  for (const auto& f : delaunay.tetrahedron_faces) {
+  for (const auto& f : delaunay.tetrahedra) {
     const std::array<int, 4> t{triangle_of[f[0]], triangle_of[f[1]], triangle_of[f[2]],
                                triangle_of[f[3]]};
     if (t[0] >= 0 && t[1] >= 0 && t[2] >= 0 && t[3] >= 0) k.tetrahedra.push_back(t);

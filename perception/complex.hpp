@@ -18,9 +18,8 @@ struct DelaunayGraph {
   std::vector<std::array<int, 2>> edges;      ///< i < j
   std::vector<double> edge_length;            ///< per edge
   std::vector<std::array<int, 3>> triangles;  ///< edge ids, per Delaunay facet
-  int tetrahedra = 0;
-  /// Each finite tetrahedron's four facets (indices into `triangles`), sorted.
-  std::vector<std::array<int, 4>> tetrahedron_faces;
+  /// Each finite tetrahedron as its four facets (indices into `triangles`), sorted.
+  std::vector<std::array<int, 4>> tetrahedra;
 };
 
 /// CGAL Delaunay_triangulation_3 with the exact-predicates kernel (Qhull does not scale: design

@@ -47,7 +47,6 @@ DelaunayGraph delaunay_3d(const PointCloud& points) {
                          : "all points are collinear: K_d needs points that span 3-D");
   DelaunayGraph g;
   g.points = points;
-  g.tetrahedra = static_cast<int>(dt.number_of_finite_cells());
   for (auto e = dt.finite_edges_begin(); e != dt.finite_edges_end(); ++e) {
     int a = e->first->vertex(e->second)->info();
     int b = e->first->vertex(e->third)->info();
@@ -69,7 +68,7 @@ DelaunayGraph delaunay_3d(const PointCloud& points) {
   g.edge_length.reserve(g.edges.size());
   for (const auto& e : g.edges) g.edge_length.push_back((points[e[0]] - points[e[1]]).norm());
   std::vector<std::pair<std::array<int, 3>, int>> facets;  // edge ids, enumeration index
-  facets.reserve(2 * g.tetrahedra + 16);
+  facets.reserve(2 * dt.number_of_finite_cells() + 16);
   for (auto f = dt.finite_facets_begin(); f != dt.finite_facets_end(); ++f) {
     const int i = f->second;
     const int a = f->first->vertex((i + 1) & 3)->info();
@@ -90,14 +89,14 @@ DelaunayGraph delaunay_3d(const PointCloud& points) {
     id[k] = static_cast<int>(g.triangles.size());
     g.triangles.push_back(t);
   }
-  g.tetrahedron_faces.reserve(g.tetrahedra);
+  g.tetrahedra.reserve(dt.number_of_finite_cells());
   for (auto c = dt.finite_cells_begin(); c != dt.finite_cells_end(); ++c) {
     std::array<int, 4> faces;
     for (int i = 0; i < 4; ++i) faces[i] = id[c->info()[i]];
     std::sort(faces.begin(), faces.end());
-    g.tetrahedron_faces.push_back(faces);
+    g.tetrahedra.push_back(faces);
   }
-  std::sort(g.tetrahedron_faces.begin(), g.tetrahedron_faces.end());
+  std::sort(g.tetrahedra.begin(), g.tetrahedra.end());
   return g;
 }
 

@@ -239,7 +239,8 @@ ObjectModel build_object_model(const PerceptionInputs& in, const PerceptionOptio
              m.d_rule);
   say(o, fmt("perception: K_d has %.0f edges and %.0f triangles (Delaunay: %.0f tetrahedra)",
              static_cast<double>(m.complex.edges.size()),
-             static_cast<double>(m.complex.triangles.size()), dg.tetrahedra));
+             static_cast<double>(m.complex.triangles.size()),
+             static_cast<double>(dg.tetrahedra.size())));
 
   t = Clock::now();
   const HomologyBasis basis = shortest_homology_basis(m.complex, o.homology);

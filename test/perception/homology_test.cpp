@@ -217,15 +217,14 @@ TEST(Delaunay, RejectsDegenerateInput) {
   const DelaunayGraph g = delaunay_3d({{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0, 0, 1}});
   EXPECT_EQ(g.edges.size(), 6u);
   EXPECT_EQ(g.triangles.size(), 4u);
-  EXPECT_EQ(g.tetrahedra, 1);
   // K_d keeps edges shorter than d and triangles whose three edges are.
   const SimplicialComplex k = build_complex(g, 1.2);
   EXPECT_EQ(k.edges.size(), 3u);  // the unit edges; the sqrt(2) ones are too long
   EXPECT_EQ(k.triangles.size(), 0u);
   EXPECT_EQ(build_complex(g, 1.5).triangles.size(), 4u);
   // The tetrahedron as its four facets; in K_d only when all six edges are.
-  ASSERT_EQ(g.tetrahedron_faces.size(), 1u);
-  EXPECT_EQ(g.tetrahedron_faces[0], (std::array<int, 4>{0, 1, 2, 3}));
+  ASSERT_EQ(g.tetrahedra.size(), 1u);
+  EXPECT_EQ(g.tetrahedra[0], (std::array<int, 4>{0, 1, 2, 3}));
   EXPECT_TRUE(k.tetrahedra.empty());
   EXPECT_EQ(build_complex(g, 1.5).tetrahedra.size(), 1u);
 }
