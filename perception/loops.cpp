@@ -88,6 +88,21 @@ bool surrounded(const PointIndex& index, const Eigen::Vector3d& p, const Eigen::
   return gap < M_PI / 2;
 }
 
+// The loop's normal n, then lines tilted 15 and 30 degrees from it at 8 azimuths each.
+std::vector<Eigen::Vector3d> probe_directions(const Eigen::Vector3d& n, bool tilted) {
+  std::vector<Eigen::Vector3d> out{n};
+  if (!tilted) return out;
+  const Eigen::Vector3d a = n.unitOrthogonal(), b = n.cross(a);
+  for (double tilt : {15.0, 30.0}) {
+    const double c = std::cos(tilt * M_PI / 180.0), s = std::sin(tilt * M_PI / 180.0);
+    for (int k = 0; k < 8; ++k) {
+      const double phi = 2.0 * M_PI * k / 8.0;
+      out.push_back(c * n + s * (std::cos(phi) * a + std::sin(phi) * b));
+    }
+  }
+  return out;
+}
+
 // Distance from p along the unit direction u to where the ray leaves the box (0 if outside).
 double exit_distance(const Eigen::AlignedBox3d& box, const Eigen::Vector3d& p,
                      const Eigen::Vector3d& u) {
@@ -288,31 +303,55 @@ void assess(Loop& loop, const PointIndex& index, const Eigen::AlignedBox3d& boun
       return;
     }
   }
-  // Open passage: a finger-wide probe along the hole's axis must not meet material, and free
-  // space must open up beyond the object on both sides.
+  // Open passage: a finger-wide probe must pass straight through the hole without meeting
+  // material, and free space must open up beyond the object on both sides. A finger need not
+  // pass along the loop's normal: beside a bulging body (a teapot's handle) a line tilted away from
+  // the body is free where the normal grazes it, so with cameras lines up to 30 degrees from the
+  // normal are tried too; a loop around a tube's wall has material inside it along every line.
   const double rho = 0.45 * min_hole;
   const double reach = std::max(2.0 * loop.hole_width, 0.1);
   const double dt = std::max(rho / 2.0, 1e-4);
-  for (double t = dt; t <= reach + 1e-12; t += dt) {
-    for (double sgn : {1.0, -1.0}) {
-      if (index.count_within(loop.centre + sgn * t * n, rho, 2) >= 2) {
-        loop.verdict = "tube_wall";
-        loop.reason = "loop around a tube wall: material inside the loop (a " + metres(2 * rho) +
-                      " probe through it is blocked " + metres(t) + " from the hole)";
-        return;
+  double blocked_at = 0.0;
+  bool surrounded_end = false, passage = false;
+  const auto directions = probe_directions(n, !views.empty());
+  for (std::size_t i = 0; i < directions.size(); ++i) {
+    const Eigen::Vector3d& u = directions[i];
+    double hit = 0.0;
+    for (double t = dt; t <= reach + 1e-12 && hit == 0.0; t += dt) {
+      for (double sgn : {1.0, -1.0}) {
+        const Eigen::Vector3d q = loop.centre + sgn * t * u;
+        // A tilted line must run through space a camera saw: behind a tube's near wall, unseen
+        // space would let it through.
+        if (index.count_within(q, rho, 2) >= 2 ||
+            (i > 0 && seen_from(views, q, 0.005) == Seen::kBlocked))
+          hit = t;
       }
     }
-  }
-  // At each end of the probe, material all around the axis (no angular gap wider than 90 degrees
-  // among the points within 1.5 hole radii) means the passage is a tube's inside.
-  for (double sgn : {1.0, -1.0}) {
-    if (surrounded(index, loop.centre + sgn * reach * n, n, 1.5 * best,
-                   std::numeric_limits<double>::infinity())) {
-      loop.verdict = "tube_wall";
-      loop.reason = "loop around a tube wall: material all around the passage " + metres(reach) +
-                    " from the hole (the inside of a tube, not a hole)";
-      return;
+    if (hit > 0.0) {
+      if (blocked_at == 0.0) blocked_at = hit;  // along the normal, for the reason
+      continue;
     }
+    // At each end of the probe, material all around the axis (no angular gap wider than 90
+    // degrees among the points within 1.5 hole radii) means the passage is a tube's inside.
+    bool ends_open = true;
+    for (double sgn : {1.0, -1.0})
+      ends_open = ends_open && !surrounded(index, loop.centre + sgn * reach * u, u, 1.5 * best,
+                                           std::numeric_limits<double>::infinity());
+    if (ends_open) {
+      passage = true;
+      break;
+    }
+    surrounded_end = true;
+  }
+  if (!passage) {
+    loop.verdict = "tube_wall";
+    loop.reason = surrounded_end
+                      ? "loop around a tube wall: material all around the passage " +
+                            metres(reach) + " from the hole (the inside of a tube, not a hole)"
+                      : "loop around a tube wall: material inside the loop (a " + metres(2 * rho) +
+                            " probe through it is blocked " + metres(blocked_at) +
+                            " from the hole)";
+    return;
   }
   // A passage, not a cavity's opening. Followed downwards until it leaves the object's bounds,
   // the passage must not meet the supporting surface soon (a hole lying on the table: no room

@@ -9,10 +9,12 @@
 //    hole's interior is projected into each camera; where a camera measured a surface in front of
 //    it, the hole was not seen. If most of the hole was never seen through -> "occlusion shadow"
 //    (a gap in a single view behind a nearer part, or a loop around material facing the camera).
-//  - open passage: a probe of radius 0.45 min_hole goes from the hole's centre along both normal
-//    directions for max(2 x width, 0.1 m). If cloud points fall inside it, or at either end the
-//    points within 1.5 hole radii surround the axis (no angular gap over 90 degrees), the loop runs
-//    around material (a tube's wall), not around a hole -> "loop around a tube wall".
+//  - open passage: a probe of radius 0.45 min_hole goes from the hole's centre along a line for
+//    max(2 x width, 0.1 m) each way: the normal, or (with cameras) a line tilted 15 or 30 degrees
+//    from it that runs through space some camera saw. If cloud points fall inside the probe along
+//    every line, or at either end of each free line the points within 1.5 hole radii surround it
+//    (no angular gap over 90 degrees), the loop runs around material (a tube's wall), not around
+//    a hole -> "loop around a tube wall".
 //  - through, not into a cavity (with a known supporting plane): followed downwards, the passage
 //    must not meet the support within max(5 cm, two finger thicknesses) -> "blocked by the
 //    support" (a hole lying on the table), nor meet it, inside the object's bounds, after running
