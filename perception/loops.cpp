@@ -313,6 +313,7 @@ void assess(Loop& loop, const PointIndex& index, const Eigen::AlignedBox3d& boun
   const double dt = std::max(rho / 2.0, 1e-4);
   double blocked_at = 0.0;
   bool surrounded_end = false, passage = false;
+  int tilt = 0;  // degrees from the normal of the line that passed
   const auto directions = probe_directions(n, !views.empty());
   for (std::size_t i = 0; i < directions.size(); ++i) {
     const Eigen::Vector3d& u = directions[i];
@@ -339,6 +340,7 @@ void assess(Loop& loop, const PointIndex& index, const Eigen::AlignedBox3d& boun
                                            std::numeric_limits<double>::infinity());
     if (ends_open) {
       passage = true;
+      tilt = i == 0 ? 0 : (i <= 8 ? 15 : 30);
       break;
     }
     surrounded_end = true;
@@ -403,7 +405,8 @@ void assess(Loop& loop, const PointIndex& index, const Eigen::AlignedBox3d& boun
   loop.verdict = "claspable";
   loop.reason = "claspable: open hole " + metres(loop.hole_width) + " wide (" +
                 (hand ? "fingers need " : "min-hole ") + metres(min_hole) + ")" +
-                (views.empty() ? "" : ", seen through");
+                (views.empty() ? "" : ", seen through") +
+                (tilt > 0 ? ", passable " + std::to_string(tilt) + " degrees from its axis" : "");
   if (hand || options.closed_aperture > 0) {
     const double hole_slack = (loop.hole_width - min_hole) / min_hole;
     const double bar_slack =
