@@ -88,7 +88,7 @@ bool surrounded(const PointIndex& index, const Eigen::Vector3d& p, const Eigen::
   return gap < M_PI / 2;
 }
 
-// The loop's normal n, then lines tilted 15 and 30 degrees from it at 8 azimuths each.
+// The loop's normal n (index 0), then lines tilted 15 degrees (1-8) and 30 degrees (9-16) from it.
 std::vector<Eigen::Vector3d> probe_directions(const Eigen::Vector3d& n, bool tilted) {
   std::vector<Eigen::Vector3d> out{n};
   if (!tilted) return out;
@@ -329,7 +329,7 @@ void assess(Loop& loop, const PointIndex& index, const Eigen::AlignedBox3d& boun
       }
     }
     if (hit > 0.0) {
-      if (blocked_at == 0.0) blocked_at = hit;  // along the normal, for the reason
+      if (blocked_at == 0.0) blocked_at = hit;  // the first blocked line's, for the reason
       continue;
     }
     // At each end of the probe, material all around the axis (no angular gap wider than 90
