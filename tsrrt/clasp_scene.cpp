@@ -41,6 +41,14 @@ std::string no_loop_reason(const perception::ObjectModel& object) {
   std::string why = "no claspable loop: ";
   for (std::size_t i = 0; i < widest.size() && i < 3; ++i)
     why += (i ? "; " : "") + widest[i]->reason;
+  // A hole narrower than about d' (a small handle) is among these, not among the reasons above.
+  if (object.unstable_loops > 0) {
+    char d[32];
+    std::snprintf(d, sizeof d, "%.4f", object.persistence_d);
+    why += "; " + std::to_string(object.unstable_loops) + " more loop" +
+           (object.unstable_loops > 1 ? "s" : "") + " of K_d fill in by d' = " + d +
+           " m (gaps or holes narrower than a finger's)";
+  }
   return why;
 }
 

@@ -8,6 +8,7 @@
 #include "examples/objects.hpp"
 #include "perception/depth_render.hpp"
 #include "test/support/purse_request.hpp"
+#include "tsrrt/clasp_scene.hpp"
 
 namespace claspplan::test {
 namespace {
@@ -117,6 +118,22 @@ TEST(ClaspSetup, CupWithoutHandleIsNoAnswerWithAReason) {
   EXPECT_EQ(r.chosen_loop(), nullptr);
   EXPECT_TRUE(r.motion.waypoints.empty());
   EXPECT_GT(r.timings.perception, 0.0);
+}
+
+// A small handle whose hole fills in at d' is not among the refused loops: the reason counts it.
+TEST(ClaspSetup, NoLoopReasonCountsTheLoopsThatFilledIn) {
+  perception::ObjectModel m;
+  perception::Loop mouth;
+  mouth.verdict = "cavity";
+  mouth.reason = "opening into a cavity: walls all around the passage";
+  m.loops.push_back(mouth);
+  m.unstable_loops = 2;
+  m.persistence_d = 0.0192;
+  const std::string why = tsrrt::no_loop_reason(m);
+  EXPECT_EQ(why.rfind("no claspable loop: opening into a cavity", 0), 0u) << why;
+  EXPECT_NE(why.find("2 more loops of K_d fill in by d' = 0.0192 m"), std::string::npos) << why;
+  m.unstable_loops = 0;
+  EXPECT_EQ(tsrrt::no_loop_reason(m).find("fill in"), std::string::npos);
 }
 
 TEST(ClaspSetup, MalformedRequestsThrow) {
