@@ -88,16 +88,22 @@ bool surrounded(const PointIndex& index, const Eigen::Vector3d& p, const Eigen::
   return gap < M_PI / 2;
 }
 
-// The loop's normal n (index 0), then lines tilted 15 degrees (1-8) and 30 degrees (9-16) from it.
-std::vector<Eigen::Vector3d> probe_directions(const Eigen::Vector3d& n, bool tilted) {
-  std::vector<Eigen::Vector3d> out{n};
+// A line of the open-passage probe: its unit direction and its tilt from the loop's normal.
+struct ProbeLine {
+  Eigen::Vector3d u;
+  int tilt = 0;  // degrees
+};
+
+// The loop's normal n, then (if `tilted`) lines 15 and 30 degrees from it at 8 azimuths each.
+std::vector<ProbeLine> probe_lines(const Eigen::Vector3d& n, bool tilted) {
+  std::vector<ProbeLine> out{{n, 0}};
   if (!tilted) return out;
   const Eigen::Vector3d a = n.unitOrthogonal(), b = n.cross(a);
-  for (double tilt : {15.0, 30.0}) {
+  for (int tilt : {15, 30}) {
     const double c = std::cos(tilt * M_PI / 180.0), s = std::sin(tilt * M_PI / 180.0);
     for (int k = 0; k < 8; ++k) {
       const double phi = 2.0 * M_PI * k / 8.0;
-      out.push_back(c * n + s * (std::cos(phi) * a + std::sin(phi) * b));
+      out.push_back({c * n + s * (std::cos(phi) * a + std::sin(phi) * b), tilt});
     }
   }
   return out;
@@ -314,9 +320,8 @@ void assess(Loop& loop, const PointIndex& index, const Eigen::AlignedBox3d& boun
   double blocked_at = 0.0;
   bool surrounded_end = false, passage = false;
   int tilt = 0;  // degrees from the normal of the line that passed
-  const auto directions = probe_directions(n, !views.empty());
-  for (std::size_t i = 0; i < directions.size(); ++i) {
-    const Eigen::Vector3d& u = directions[i];
+  for (const ProbeLine& line : probe_lines(n, !views.empty())) {
+    const Eigen::Vector3d& u = line.u;
     double hit = 0.0;
     for (double t = dt; t <= reach + 1e-12 && hit == 0.0; t += dt) {
       for (double sgn : {1.0, -1.0}) {
@@ -324,7 +329,7 @@ void assess(Loop& loop, const PointIndex& index, const Eigen::AlignedBox3d& boun
         // A tilted line must run through space a camera saw: behind a tube's near wall, unseen
         // space would let it through.
         if (index.count_within(q, rho, 2) >= 2 ||
-            (i > 0 && seen_from(views, q, 0.005) == Seen::kBlocked))
+            (line.tilt > 0 && seen_from(views, q, 0.005) == Seen::kBlocked))
           hit = t;
       }
     }
@@ -340,7 +345,7 @@ void assess(Loop& loop, const PointIndex& index, const Eigen::AlignedBox3d& boun
                                            std::numeric_limits<double>::infinity());
     if (ends_open) {
       passage = true;
-      tilt = i == 0 ? 0 : (i <= 8 ? 15 : 30);
+      tilt = line.tilt;
       break;
     }
     surrounded_end = true;

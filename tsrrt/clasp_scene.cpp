@@ -26,12 +26,12 @@ int choose_loop(const perception::ObjectModel& object, const std::optional<Eigen
 }
 
 std::string no_loop_reason(const perception::ObjectModel& object) {
-  if (object.loops.empty() && object.unstable_loops > 0) {
-    char d[32];
-    std::snprintf(d, sizeof d, "%.4f", object.persistence_d);
-    return "no stable loop: all " + std::to_string(object.unstable_loops) +
-           " loops of K_d fill in by d' = " + d + " m (gaps or holes narrower than a finger's)";
-  }
+  char d[32];
+  std::snprintf(d, sizeof d, "%.4f", object.persistence_d);
+  const std::string filled_in =
+      " of K_d fill in by d' = " + std::string(d) + " m (gaps or holes narrower than a finger's)";
+  if (object.loops.empty() && object.unstable_loops > 0)
+    return "no stable loop: all " + std::to_string(object.unstable_loops) + " loops" + filled_in;
   if (object.loops.empty()) return "the object has no loops (beta1 = 0)";
   // The widest holes first: why the most promising loops were refused.
   std::vector<const perception::Loop*> widest;
@@ -43,11 +43,8 @@ std::string no_loop_reason(const perception::ObjectModel& object) {
     why += (i ? "; " : "") + widest[i]->reason;
   // A hole narrower than about d' (a small handle) is among these, not among the reasons above.
   if (object.unstable_loops > 0) {
-    char d[32];
-    std::snprintf(d, sizeof d, "%.4f", object.persistence_d);
     why += "; " + std::to_string(object.unstable_loops) + " more loop" +
-           (object.unstable_loops > 1 ? "s" : "") + " of K_d fill in by d' = " + d +
-           " m (gaps or holes narrower than a finger's)";
+           (object.unstable_loops > 1 ? "s" : "") + filled_in;
   }
   return why;
 }
