@@ -259,17 +259,24 @@ std::vector<Eigen::Vector3d> depth_to_points(const DepthView& view) {
   return pts;
 }
 
-void append_depth_points(const DepthView& view, std::vector<Eigen::Vector3d>& out) {
+int append_depth_points(const DepthView& view, std::vector<Eigen::Vector3d>& out,
+                        const Eigen::AlignedBox3d& keep) {
   const CameraModel& c = view.camera;
   const Eigen::Matrix3d R = c.T_world_camera.linear();
   const Eigen::Vector3d t = c.T_world_camera.translation();
+  const bool crop = !keep.isEmpty();
+  int valid = 0;
   for (int v = 0; v < view.image.height; ++v) {
     for (int u = 0; u < view.image.width; ++u) {
       const double z = view.image.at(u, v);
       if (!(z > 0.0) || !std::isfinite(z)) continue;
-      out.push_back(R * Eigen::Vector3d((u - c.cx) * z / c.fx, (v - c.cy) * z / c.fy, z) + t);
+      ++valid;
+      const Eigen::Vector3d p =
+          R * Eigen::Vector3d((u - c.cx) * z / c.fx, (v - c.cy) * z / c.fy, z) + t;
+      if (!crop || keep.contains(p)) out.push_back(p);
     }
   }
+  return valid;
 }
 
 }  // namespace claspplan::perception

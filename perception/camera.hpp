@@ -84,7 +84,9 @@ void write_depth_png(const DepthImage& image, const CameraModel& camera, const s
 
 /// Every valid pixel back-projected to the world frame.
 std::vector<Eigen::Vector3d> depth_to_points(const DepthView& view);
-/// The same, appended to `out` (several views into one cloud without copies).
-void append_depth_points(const DepthView& view, std::vector<Eigen::Vector3d>& out);
+/// The same, appended to `out` (several views into one cloud without copies), only those inside
+/// `keep` when it is not empty (a crop that never stores the rest). Returns the valid pixels.
+int append_depth_points(const DepthView& view, std::vector<Eigen::Vector3d>& out,
+                        const Eigen::AlignedBox3d& keep = {});
 
 }  // namespace claspplan::perception

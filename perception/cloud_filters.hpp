@@ -38,8 +38,9 @@ struct PlaneRemovalResult {
 PlaneRemovalResult remove_supporting_plane(const PointCloud& cloud,
                                            const PlaneRemovalOptions& options = {});
 
-/// PCL StatisticalOutlierRemoval: drops points whose mean distance to their k neighbours exceeds
-/// the global mean by more than `stddev_mult` standard deviations.
+/// Statistical outlier removal (the statistics of PCL's StatisticalOutlierRemoval): drops points
+/// whose mean distance to their k neighbours exceeds the mean of those by more than `stddev_mult`
+/// sample standard deviations.
 PointCloud remove_statistical_outliers(const PointCloud& cloud, int k = 16,
                                        double stddev_mult = 2.0);
 

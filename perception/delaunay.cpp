@@ -1,12 +1,12 @@
 // The only file that includes CGAL (it compiles slowly): the 3-D Delaunay triangulation.
 #include <algorithm>
+#include <array>
+#include <cstdint>
 #include <stdexcept>
 #include <utility>
 
 #include <CGAL/Delaunay_triangulation_3.h>
-#include <CGAL/Delaunay_triangulation_cell_base_3.h>
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
-#include <CGAL/Triangulation_cell_base_with_info_3.h>
 #include <CGAL/Triangulation_data_structure_3.h>
 #include <CGAL/Triangulation_vertex_base_with_info_3.h>
 
@@ -19,12 +19,51 @@ namespace claspplan::perception {
 namespace {
 using Kernel = CGAL::Exact_predicates_inexact_constructions_kernel;  // exact predicates
 using Vb = CGAL::Triangulation_vertex_base_with_info_3<int, Kernel>;
-// A cell's info: the (pre-sort) index of each of its four facets.
-using Cb =
-    CGAL::Triangulation_cell_base_with_info_3<std::array<int, 4>, Kernel,
-                                              CGAL::Delaunay_triangulation_cell_base_3<Kernel>>;
-using Tds = CGAL::Triangulation_data_structure_3<Vb, Cb>;
+using Tds = CGAL::Triangulation_data_structure_3<Vb>;
 using Delaunay = CGAL::Delaunay_triangulation_3<Kernel, Tds>;
+
+// Distinct simplices keyed by their lowest vertex: per vertex (CSR), the other vertices packed in
+// 21 bits each, sorted. Bucketing by the lowest vertex keeps every sort a few dozen items long.
+class Simplices {
+ public:
+  static std::uint64_t pack(int b, int c = 0) {
+    return (std::uint64_t(b) << 21) | std::uint64_t(c);
+  }
+  Simplices(int n, const std::vector<std::pair<int, std::uint64_t>>& items) : start_(n + 1, 0) {
+    for (const auto& it : items) ++start_[it.first + 1];
+    for (int v = 0; v < n; ++v) start_[v + 1] += start_[v];
+    rest_.resize(items.size());
+    std::vector<int> fill(start_.begin(), start_.end() - 1);
+    for (const auto& it : items) rest_[fill[it.first]++] = it.second;
+    // Sort and de-duplicate each bucket, compacting in place.
+    int out = 0;
+    for (int v = 0; v < n; ++v) {
+      const auto b = rest_.begin() + start_[v], e = rest_.begin() + start_[v + 1];
+      std::sort(b, e);
+      const int kept = static_cast<int>(std::unique(b, e) - b);
+      std::copy(b, b + kept, rest_.begin() + out);
+      start_[v] = out;
+      out += kept;
+    }
+    start_[n] = out;
+    rest_.resize(out);
+  }
+  int size() const { return static_cast<int>(rest_.size()); }
+  int first(int v) const { return start_[v]; }
+  int end(int v) const { return start_[v + 1]; }
+  std::uint64_t rest(int i) const { return rest_[i]; }
+  /// Index of the simplex (v, rest), in lexicographic vertex order.
+  int find(int v, std::uint64_t rest) const {
+    const auto b = rest_.begin() + start_[v], e = rest_.begin() + start_[v + 1];
+    const auto it = std::lower_bound(b, e, rest);
+    if (it == e || *it != rest) throw std::logic_error("Delaunay face missing");
+    return static_cast<int>(it - rest_.begin());
+  }
+
+ private:
+  std::vector<int> start_;
+  std::vector<std::uint64_t> rest_;
+};
 }  // namespace
 
 DelaunayGraph delaunay_3d(const PointCloud& points) {
@@ -45,58 +84,61 @@ DelaunayGraph delaunay_3d(const PointCloud& points) {
     throw InputError(dt.dimension() == 2
                          ? "all points are coplanar: K_d needs points that span 3-D"
                          : "all points are collinear: K_d needs points that span 3-D");
+  // Every finite cell as its four vertices, sorted. Edges, triangles and tetrahedra are numbered
+  // in lexicographic vertex order, which is also the order of their sorted face ids (edge ab comes
+  // before ac and ac before bc when a < b < c): a canonical order, independent of CGAL's memory
+  // addresses, so that results are identical from run to run.
+  const int n = static_cast<int>(points.size());
+  if (n >= (1 << 21)) throw InputError("more than 2,097,151 points for the Delaunay triangulation");
+  std::vector<std::array<int, 4>> cells;
+  cells.reserve(dt.number_of_finite_cells());
+  for (auto c = dt.finite_cells_begin(); c != dt.finite_cells_end(); ++c) {
+    std::array<int, 4> v;
+    for (int i = 0; i < 4; ++i) v[i] = c->vertex(i)->info();
+    std::sort(v.begin(), v.end());
+    cells.push_back(v);
+  }
+  std::sort(cells.begin(), cells.end());
+  constexpr int kPairs[6][2] = {{0, 1}, {0, 2}, {0, 3}, {1, 2}, {1, 3}, {2, 3}};
+  constexpr int kFaces[4][3] = {{0, 1, 2}, {0, 1, 3}, {0, 2, 3}, {1, 2, 3}};
+  std::vector<std::pair<int, std::uint64_t>> items;
+  items.reserve(6 * cells.size());
+  for (const auto& c : cells)
+    for (const auto& p : kPairs) items.emplace_back(c[p[0]], Simplices::pack(c[p[1]]));
+  const Simplices edges(n, items);
+  items.clear();
+  for (const auto& c : cells)
+    for (const auto& f : kFaces) items.emplace_back(c[f[0]], Simplices::pack(c[f[1]], c[f[2]]));
+  const Simplices faces(n, items);
+  items = {};
+
   DelaunayGraph g;
   g.points = points;
-  for (auto e = dt.finite_edges_begin(); e != dt.finite_edges_end(); ++e) {
-    int a = e->first->vertex(e->second)->info();
-    int b = e->first->vertex(e->third)->info();
-    if (a > b) std::swap(a, b);
-    g.edges.push_back({a, b});
+  g.edges.reserve(edges.size());
+  g.edge_length.reserve(edges.size());
+  for (int a = 0; a < n; ++a)
+    for (int i = edges.first(a); i < edges.end(a); ++i) {
+      const int b = static_cast<int>(edges.rest(i) >> 21);
+      g.edges.push_back({a, b});
+      g.edge_length.push_back((points[a] - points[b]).norm());
+    }
+  auto edge_id = [&](int a, int b) { return edges.find(a, Simplices::pack(b)); };
+  g.triangles.reserve(faces.size());
+  for (int a = 0; a < n; ++a)
+    for (int i = faces.first(a); i < faces.end(a); ++i) {
+      const int b = static_cast<int>(faces.rest(i) >> 21);
+      const int c = static_cast<int>(faces.rest(i) & ((1u << 21) - 1));
+      g.triangles.push_back({edge_id(a, b), edge_id(a, c), edge_id(b, c)});  // ascending
+    }
+  g.tetrahedra.reserve(cells.size());
+  for (const auto& c : cells) {
+    std::array<int, 4> t;
+    for (int i = 0; i < 4; ++i) {
+      const int* f = kFaces[i];
+      t[i] = faces.find(c[f[0]], Simplices::pack(c[f[1]], c[f[2]]));  // ascending
+    }
+    g.tetrahedra.push_back(t);
   }
-  std::sort(g.edges.begin(), g.edges.end());
-  // Edge lookup: per vertex, its edges in CSR form (neighbours sorted).
-  const int n = static_cast<int>(points.size());
-  std::vector<int> start(n + 1, 0);
-  for (const auto& e : g.edges) ++start[e[0] + 1];
-  for (int i = 0; i < n; ++i) start[i + 1] += start[i];
-  auto edge_id = [&](int a, int b) {
-    if (a > b) std::swap(a, b);
-    for (int k = start[a]; k < start[a + 1]; ++k)
-      if (g.edges[k][1] == b) return k;
-    throw std::logic_error("Delaunay facet edge missing");
-  };
-  g.edge_length.reserve(g.edges.size());
-  for (const auto& e : g.edges) g.edge_length.push_back((points[e[0]] - points[e[1]]).norm());
-  std::vector<std::pair<std::array<int, 3>, int>> facets;  // edge ids, enumeration index
-  facets.reserve(2 * dt.number_of_finite_cells() + 16);
-  for (auto f = dt.finite_facets_begin(); f != dt.finite_facets_end(); ++f) {
-    const int i = f->second;
-    const int a = f->first->vertex((i + 1) & 3)->info();
-    const int b = f->first->vertex((i + 2) & 3)->info();
-    const int c = f->first->vertex((i + 3) & 3)->info();
-    std::array<int, 3> t{edge_id(a, b), edge_id(b, c), edge_id(a, c)};
-    std::sort(t.begin(), t.end());
-    const int k = static_cast<int>(facets.size());
-    facets.emplace_back(t, k);
-    f->first->info()[i] = k;  // both cells that share the facet
-    f->first->neighbor(i)->info()[dt.mirror_index(f->first, i)] = k;
-  }
-  // CGAL's facet order depends on memory addresses: a canonical order keeps results identical.
-  std::sort(facets.begin(), facets.end());
-  std::vector<int> id(facets.size());
-  g.triangles.reserve(facets.size());
-  for (const auto& [t, k] : facets) {
-    id[k] = static_cast<int>(g.triangles.size());
-    g.triangles.push_back(t);
-  }
-  g.tetrahedra.reserve(dt.number_of_finite_cells());
-  for (auto c = dt.finite_cells_begin(); c != dt.finite_cells_end(); ++c) {
-    std::array<int, 4> faces;
-    for (int i = 0; i < 4; ++i) faces[i] = id[c->info()[i]];
-    std::sort(faces.begin(), faces.end());
-    g.tetrahedra.push_back(faces);
-  }
-  std::sort(g.tetrahedra.begin(), g.tetrahedra.end());
   return g;
 }
 

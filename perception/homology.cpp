@@ -1,12 +1,18 @@
 #include "perception/homology.hpp"
 
 #include <algorithm>
+#include <array>
+#include <atomic>
 #include <cstdint>
+#include <future>
+#include <iterator>
 #include <limits>
+#include <memory>
 #include <numeric>
 #include <queue>
 #include <stdexcept>
 #include <string>
+#include <thread>
 #include <unordered_map>
 #include <utility>
 
@@ -29,13 +35,6 @@ struct Annotation {
   std::vector<Word> edge_ann;  // m x words; zero for tree edges and null fundamental cycles
   std::vector<int> component;  // per vertex
 };
-
-std::vector<int> symmetric_difference(const std::vector<int>& a, const std::vector<int>& b) {
-  std::vector<int> out;
-  out.reserve(a.size() + b.size());
-  std::set_symmetric_difference(a.begin(), a.end(), b.begin(), b.end(), std::back_inserter(out));
-  return out;
-}
 
 Annotation annotate(const SimplicialComplex& k, const Graph& g, bool need_annotations,
                     int max_beta1) {
@@ -67,27 +66,35 @@ Annotation annotate(const SimplicialComplex& k, const Graph& g, bool need_annota
   for (int e = 0; e < m; ++e)
     if (!tree[e]) coords.push_back(e);
   auto key = [&](int e) { return std::max(dist0[k.edges[e][0]], dist0[k.edges[e][1]]); };
-  std::sort(coords.begin(), coords.end(), [&](int x, int y) {
-    const double kx = key(x), ky = key(y);
-    return kx != ky ? kx < ky : x < y;
-  });
+  std::vector<double> key_of(m);
+  for (int e : coords) key_of[e] = key(e);
+  std::sort(coords.begin(), coords.end(),
+            [&](int x, int y) { return key_of[x] != key_of[y] ? key_of[x] < key_of[y] : x < y; });
   std::vector<int> coord_of(m, -1);
   for (size_t i = 0; i < coords.size(); ++i) coord_of[coords[i]] = static_cast<int>(i);
   const int kc = static_cast<int>(coords.size());
-  // Triangle boundaries in non-tree coordinates, reduced over Z2 (low-pivot reduction).
-  std::vector<std::vector<int>> columns(k.triangles.size());
+  // Triangle boundaries in non-tree coordinates (at most three, ascending), reduced over Z2
+  // (low-pivot reduction).
+  struct Boundary {
+    int size = 0;
+    std::array<int, 3> c{};
+    int low() const { return c[size - 1]; }
+  };
+  std::vector<Boundary> columns(k.triangles.size());
   std::vector<int> order;  // the triangles with a non-zero column, in reduction order
   order.reserve(k.triangles.size());
   for (size_t t = 0; t < k.triangles.size(); ++t) {
-    auto& c = columns[t];
+    Boundary& b = columns[t];
     for (int e : k.triangles[t])
-      if (coord_of[e] >= 0) c.push_back(coord_of[e]);
-    std::sort(c.begin(), c.end());
-    if (!c.empty()) order.push_back(static_cast<int>(t));
+      if (coord_of[e] >= 0) b.c[b.size++] = coord_of[e];
+    std::sort(b.c.begin(), b.c.begin() + b.size);
+    if (b.size > 0) order.push_back(static_cast<int>(t));
   }
   std::sort(order.begin(), order.end(), [&](int i, int j) {
-    const auto &x = columns[i], &y = columns[j];
-    return x.back() != y.back() ? x.back() < y.back() : x < y;
+    const Boundary &x = columns[i], &y = columns[j];
+    if (x.low() != y.low()) return x.low() < y.low();
+    return std::lexicographical_compare(x.c.begin(), x.c.begin() + x.size, y.c.begin(),
+                                        y.c.begin() + y.size);
   });
   // A tetrahedron's four faces sum to a zero boundary, so the last of them to be reduced is a sum
   // of columns already seen: it would reduce to zero, and is skipped (the same pivots, far less
@@ -100,18 +107,27 @@ Annotation annotate(const SimplicialComplex& k, const Graph& g, bool need_annota
     for (int t : tet) last = std::max(last, position[t]);
     if (last >= 0) dependent[last] = 1;
   }
+  // The reduced columns, one after another in `pool`: column j is pool[first[j] .. first[j+1]).
   std::vector<int> pivot_of(kc, -1);
-  std::vector<std::vector<int>> reduced;
+  std::vector<int> pool, first{0}, c, sum;
   for (size_t i = 0; i < order.size(); ++i) {
     if (dependent[i]) continue;
-    auto& c = columns[order[i]];
-    while (!c.empty() && pivot_of[c.back()] >= 0)
-      c = symmetric_difference(c, reduced[pivot_of[c.back()]]);
+    const Boundary& b = columns[order[i]];
+    c.assign(b.c.begin(), b.c.begin() + b.size);
+    while (!c.empty() && pivot_of[c.back()] >= 0) {
+      const int j = pivot_of[c.back()];
+      sum.clear();
+      std::set_symmetric_difference(c.begin(), c.end(), pool.begin() + first[j],
+                                    pool.begin() + first[j + 1], std::back_inserter(sum));
+      c.swap(sum);
+    }
     if (c.empty()) continue;
-    pivot_of[c.back()] = static_cast<int>(reduced.size());
-    reduced.push_back(std::move(c));
+    pivot_of[c.back()] = static_cast<int>(first.size()) - 1;
+    pool.insert(pool.end(), c.begin(), c.end());
+    first.push_back(static_cast<int>(pool.size()));
   }
-  a.beta1 = kc - static_cast<int>(reduced.size());
+  const int rank = static_cast<int>(first.size()) - 1;
+  a.beta1 = kc - rank;
   if (a.beta1 > max_beta1)
     throw InputError("K_d has beta1 = " + std::to_string(a.beta1) + " (more than " +
                      std::to_string(max_beta1) + " loops): d = " + std::to_string(k.d) +
@@ -130,7 +146,9 @@ Annotation annotate(const SimplicialComplex& k, const Graph& g, bool need_annota
       ++free_index;
       continue;
     }
-    for (int j : reduced[pivot_of[i]]) {
+    const int p = pivot_of[i];
+    for (int q = first[p]; q < first[p + 1]; ++q) {
+      const int j = pool[q];
       if (j == i) continue;
       const Word* aj = coord_ann.data() + size_t(j) * W;
       for (int w = 0; w < W; ++w) ai[w] ^= aj[w];
@@ -292,33 +310,34 @@ class Span {
   std::vector<std::vector<Word>> at_;
 };
 
-}  // namespace
-
-HomologyBasis shortest_homology_basis(const SimplicialComplex& complex,
-                                      const HomologyOptions& options) {
-  const Graph g(complex);
-  const Annotation a = annotate(complex, g, true, options.max_beta1);
-  HomologyBasis out;
-  out.beta1 = a.beta1;
-  if (a.beta1 == 0) return out;
-  const int W = a.words;
+// Steps 2-3 for any annotation `ann` (W words per edge) of the complex's edges: the shortest cycles
+// whose classes are independent and non-zero, `rank` of them (-1: as many as the candidates of one
+// full tree per component span), into out.cycles (shortest first).
+void shortest_cycles(const SimplicialComplex& complex, const Graph& g, const Word* ann, int W,
+                     const std::vector<int>& component, int rank, const HomologyOptions& options,
+                     HomologyBasis& out) {
   const int m = static_cast<int>(complex.edges.size());
-  const Word* ann = a.edge_ann.data();
 
   std::vector<int> support;
   for (int e = 0; e < m; ++e)
     if (!is_zero(ann + size_t(e) * W, W)) support.push_back(e);
   out.support_edges = static_cast<int>(support.size());
 
-  Dijkstra dj(g, W);
   std::vector<Candidate> cand;
   std::vector<Word> classes;
   std::unordered_map<std::string, int> by_class;
   double bound = kInf;  // candidates longer than the worst loop of a full basis are useless
-  std::vector<Word> cls(W);
-  std::vector<char> rooted(g.n, 0);
-  auto collect = [&](int root, double radius) {
-    if (!rooted[root]) ++out.roots, rooted[root] = 1;
+  auto class_key = [W](const Word* cls) {
+    return std::string(reinterpret_cast<const char*>(cls), W * sizeof(Word));
+  };
+  // One root's tree: per non-zero class it closes, its shortest cycle within the bound.
+  struct Found {
+    std::vector<Candidate> cand;
+    std::vector<Word> classes;
+  };
+  auto run_root = [&](Dijkstra& dj, int root, double radius, Found& f) {
+    std::unordered_map<std::string, int> index;
+    std::vector<Word> cls(W);
     dj.run(root, radius, ann, [&](int u, int w, int e, double length) {
       const Word* pu = dj.pa(u);
       const Word* pw = dj.pa(w);
@@ -334,24 +353,60 @@ HomologyBasis shortest_homology_basis(const SimplicialComplex& complex,
       // candidate): short loops far from the root get short lengths, hence tight bounds.
       length -= 2.0 * dj.dist(dj.common_ancestor(u, w));
       if (length > bound) return;
-      // Only the shortest candidate of each class can enter the basis: keep one per class.
-      const std::string key(reinterpret_cast<const char*>(cls.data()), W * sizeof(Word));
       const Candidate fresh{length, root, e};
-      const auto [it, added] = by_class.emplace(key, static_cast<int>(cand.size()));
+      const auto [it, added] =
+          index.emplace(class_key(cls.data()), static_cast<int>(f.cand.size()));
       if (added) {
-        cand.push_back(fresh);
-        classes.insert(classes.end(), cls.begin(), cls.end());
-      } else if (before(fresh, cand[it->second])) {
-        cand[it->second] = fresh;
+        f.cand.push_back(fresh);
+        f.classes.insert(f.classes.end(), cls.begin(), cls.end());
+      } else if (before(fresh, f.cand[it->second])) {
+        f.cand[it->second] = fresh;
       }
     });
+  };
+  // Roots run on all cores (a Dijkstra each), then merge in root order: only the shortest
+  // candidate of each class can enter the basis, so one per class is kept. The result does not
+  // depend on the number of threads.
+  const int threads = std::max(
+      1, std::min<int>(options.threads > 0 ? options.threads
+                                           : static_cast<int>(std::thread::hardware_concurrency()),
+                       64));
+  std::vector<std::unique_ptr<Dijkstra>> workers;
+  for (int t = 0; t < threads; ++t) workers.push_back(std::make_unique<Dijkstra>(g, W));
+  Dijkstra& dj = *workers[0];
+  std::vector<char> rooted(g.n, 0);
+  auto collect = [&](const std::vector<int>& roots, double radius) {
+    std::vector<Found> found(roots.size());
+    std::atomic<size_t> next{0};
+    auto work = [&](Dijkstra& d) {
+      for (size_t i = next++; i < roots.size(); i = next++) run_root(d, roots[i], radius, found[i]);
+    };
+    std::vector<std::thread> pool;
+    const int used = std::min<int>(threads, static_cast<int>(roots.size()));
+    for (int t = 1; t < used; ++t) pool.emplace_back(work, std::ref(*workers[t]));
+    work(dj);
+    for (auto& t : pool) t.join();
+    for (size_t i = 0; i < roots.size(); ++i) {
+      if (!rooted[roots[i]]) ++out.roots, rooted[roots[i]] = 1;
+      const Found& f = found[i];
+      for (size_t c = 0; c < f.cand.size(); ++c) {
+        const Word* cls = f.classes.data() + c * W;
+        const auto [it, added] = by_class.emplace(class_key(cls), static_cast<int>(cand.size()));
+        if (added) {
+          cand.push_back(f.cand[c]);
+          classes.insert(classes.end(), cls, cls + W);
+        } else if (before(f.cand[c], cand[it->second])) {
+          cand[it->second] = f.cand[c];
+        }
+      }
+    }
   };
   // The greedy basis of the candidates so far, as candidate indices sorted by length; tightens
   // the bound and drops candidates above it once the basis is full.
   auto basis = [&]() {
-    std::vector<int> kept = greedy(cand, classes, W, a.beta1);
+    std::vector<int> kept = greedy(cand, classes, W, rank);
     std::sort(kept.begin(), kept.end(), [&](int x, int y) { return before(cand[x], cand[y]); });
-    if (static_cast<int>(kept.size()) == a.beta1 && cand[kept.back()].length < bound) {
+    if (static_cast<int>(kept.size()) == rank && cand[kept.back()].length < bound) {
       bound = cand[kept.back()].length;
       std::vector<int> remap(cand.size(), -1);
       size_t n_kept = 0;
@@ -365,31 +420,41 @@ HomologyBasis shortest_homology_basis(const SimplicialComplex& complex,
       classes.resize(n_kept * W);
       by_class.clear();
       for (size_t c = 0; c < cand.size(); ++c)
-        by_class.emplace(
-            std::string(reinterpret_cast<const char*>(classes.data() + c * W), W * sizeof(Word)),
-            static_cast<int>(c));
+        by_class.emplace(class_key(classes.data() + c * W), static_cast<int>(c));
       for (int& k : kept) k = remap[k];
     }
     return kept;
   };
 
+  // Without a given rank, the candidates of full trees span the image: their greedy's size.
+  auto spanned_rank = [&]() {
+    return static_cast<int>(greedy(cand, classes, W, std::numeric_limits<int>::max()).size());
+  };
   if (!options.fast) {
-    for (int v = 0; v < g.n; ++v) collect(v, kInf);
+    std::vector<int> all(g.n);
+    std::iota(all.begin(), all.end(), 0);
+    collect(all, kInf);
+    if (rank < 0) rank = spanned_rank();
+    if (rank == 0) return;
   } else {
     // One root per component with loops, unbounded: its candidates span that component's H1, so
     // the greedy then has a full basis and the bound.
     const std::vector<int> cover = vertex_cover(complex, support, g.n);
     std::vector<char> has_support(g.n, 0), seen(g.n, 0);
     std::vector<double> radius_done(g.n, -1.0);
-    for (int e : support) has_support[a.component[complex.edges[e][0]]] = 1;
+    for (int e : support) has_support[component[complex.edges[e][0]]] = 1;
+    std::vector<int> first_roots;
     for (int r : cover) {
-      const int c = a.component[r];
+      const int c = component[r];
       if (has_support[c] && !seen[c]) {
         seen[c] = 1;
-        collect(r, kInf);
+        first_roots.push_back(r);
         radius_done[r] = kInf;
       }
     }
+    collect(first_roots, kInf);
+    if (rank < 0) rank = spanned_rank();
+    if (rank == 0) return;  // no loop persists
     // Levels. After all roots on the edges whose annotation is outside V (the span of the loops
     // certified so far) have run with radius rho, every basis loop of length <= 2 rho is found:
     // such a loop's class is outside V, so one of its edges is, and a root on it sees the whole
@@ -398,13 +463,13 @@ HomologyBasis shortest_homology_basis(const SimplicialComplex& complex,
     int n_certified = 0;
     while (true) {
       const std::vector<int> kept = basis();
-      if (static_cast<int>(kept.size()) != a.beta1)
+      if (static_cast<int>(kept.size()) != rank)
         throw std::logic_error("shortest basis: the candidates do not span H1");
-      if (n_certified == a.beta1) break;
+      if (n_certified == rank) break;
       // This level: the next uncertified loops whose lengths are within 5% of the first.
       const double first = cand[kept[n_certified]].length;
       double level = first;
-      for (int k = n_certified; k < a.beta1 && cand[kept[k]].length <= 1.05 * first; ++k)
+      for (int k = n_certified; k < rank && cand[kept[k]].length <= 1.05 * first; ++k)
         level = cand[kept[k]].length;
       std::vector<int> outside;
       std::vector<Word> v(W);
@@ -412,13 +477,15 @@ HomologyBasis shortest_homology_basis(const SimplicialComplex& complex,
         std::copy_n(ann + size_t(e) * W, W, v.begin());
         if (!certified.reduce(v)) outside.push_back(e);
       }
+      std::vector<int> roots;
       for (int r : vertex_cover(complex, outside, g.n)) {
         if (radius_done[r] >= level / 2) continue;
-        collect(r, level / 2);
+        roots.push_back(r);
         radius_done[r] = level / 2;
       }
+      collect(roots, level / 2);
       const std::vector<int> now = basis();
-      for (int k = n_certified; k < a.beta1; ++k) {
+      for (int k = n_certified; k < rank; ++k) {
         if (cand[now[k]].length > level) break;
         certified.insert(std::vector<Word>(classes.begin() + size_t(now[k]) * W,
                                            classes.begin() + size_t(now[k] + 1) * W));
@@ -426,8 +493,8 @@ HomologyBasis shortest_homology_basis(const SimplicialComplex& complex,
       }
     }
   }
-  const std::vector<int> kept = greedy(cand, classes, W, a.beta1);
-  if (static_cast<int>(kept.size()) != a.beta1)
+  const std::vector<int> kept = greedy(cand, classes, W, rank);
+  if (static_cast<int>(kept.size()) != rank)
     throw std::logic_error("shortest basis: the candidates do not span H1");
 
   // Rebuild each loop: the two tree paths from the root, joined at their last common vertex.
@@ -464,6 +531,102 @@ HomologyBasis shortest_homology_basis(const SimplicialComplex& complex,
   }
   std::stable_sort(out.cycles.begin(), out.cycles.end(),
                    [](const BasisCycle& x, const BasisCycle& y) { return x.length < y.length; });
+}
+
+// K_d' annotations restricted to K_d are supported where K_d''s spanning tree closed its cycles,
+// which can be a long seam across a surface. Adding a coboundary, ann(uw) ^= pa(u) ^ pa(w), keeps
+// every cycle's class (the pa terms cancel around it); with pa the prefix annotations of a
+// shortest-path tree of K_d, the support becomes where that tree's fronts met around each hole.
+// Of a few roots per component the tree with the fewest support edges is kept: every support edge
+// costs a Dijkstra root later (the purse at 40,000 points: 1,235 support edges before, 178 after).
+void regauge(const Graph& g, int W, const std::vector<int>& component, std::vector<Word>& ann) {
+  std::vector<std::vector<int>> members;
+  for (int v = 0; v < g.n; ++v) {
+    if (component[v] >= static_cast<int>(members.size())) members.resize(component[v] + 1);
+    members[component[v]].push_back(v);
+  }
+  Dijkstra dj(g, W);
+  std::vector<Word> best_pa(size_t(g.n) * W, 0), pa(size_t(g.n) * W);
+  auto support_of = [&](const std::vector<int>& vs, const std::vector<Word>& p) {
+    int count = 0;
+    for (int v : vs)
+      for (int k = g.start[v]; k < g.start[v + 1]; ++k) {
+        const int w = g.arcs[k].to;
+        if (w < v) continue;
+        const Word* a = ann.data() + size_t(g.arcs[k].edge) * W;
+        bool zero = true;
+        for (int j = 0; j < W; ++j)
+          zero = zero && !(a[j] ^ p[size_t(v) * W + j] ^ p[size_t(w) * W + j]);
+        count += !zero;
+      }
+    return count;
+  };
+  for (const auto& vs : members) {
+    int best = support_of(vs, best_pa);  // the gauge as it is
+    for (int q = 0; q < 4; ++q) {
+      dj.run(vs[vs.size() * q / 4], kInf, ann.data(), [](int, int, int, double) {});
+      for (int v : vs) std::copy_n(dj.pa(v), W, pa.begin() + size_t(v) * W);
+      const int count = support_of(vs, pa);
+      if (count < best) {
+        best = count;
+        for (int v : vs)
+          std::copy_n(pa.begin() + size_t(v) * W, W, best_pa.begin() + size_t(v) * W);
+      }
+    }
+  }
+  for (int v = 0; v < g.n; ++v)
+    for (int k = g.start[v]; k < g.start[v + 1]; ++k) {
+      const int w = g.arcs[k].to;
+      if (w < v) continue;
+      Word* a = ann.data() + size_t(g.arcs[k].edge) * W;
+      for (int j = 0; j < W; ++j) a[j] ^= best_pa[size_t(v) * W + j] ^ best_pa[size_t(w) * W + j];
+    }
+}
+
+}  // namespace
+
+HomologyBasis shortest_homology_basis(const SimplicialComplex& complex,
+                                      const HomologyOptions& options) {
+  const Graph g(complex);
+  const Annotation a = annotate(complex, g, true, options.max_beta1);
+  HomologyBasis out;
+  out.beta1 = a.beta1;
+  if (a.beta1 > 0)
+    shortest_cycles(complex, g, a.edge_ann.data(), a.words, a.component, a.beta1, options, out);
+  return out;
+}
+
+HomologyBasis persistent_homology_basis(const SimplicialComplex& complex,
+                                        const SimplicialComplex& larger,
+                                        const HomologyOptions& options) {
+  // K_d's own reduction (beta1 and components) and K_d''s annotations are independent: with more
+  // than one thread they run side by side.
+  const Graph g(complex), gl(larger);
+  auto own_reduction = [&] { return annotate(complex, g, false, options.max_beta1); };
+  std::future<Annotation> own_later;
+  if (options.threads != 1 && std::thread::hardware_concurrency() > 1)
+    own_later = std::async(std::launch::async, own_reduction);
+  const Annotation big = annotate(larger, gl, true, std::numeric_limits<int>::max());
+  const Annotation own = own_later.valid() ? own_later.get() : own_reduction();
+  HomologyBasis out;
+  out.beta1 = own.beta1;
+  if (own.beta1 == 0 || big.beta1 == 0) return out;
+  // Each edge of K_d carries its annotation in K_d': a cycle's class there is their XOR.
+  const int W = big.words;
+  std::vector<Word> ann(complex.edges.size() * W, 0);
+  for (size_t e = 0; e < complex.edges.size(); ++e) {
+    const int u = complex.edges[e][0], w = complex.edges[e][1];
+    int in_larger = -1;
+    if (u < gl.n)
+      for (int k = gl.start[u]; k < gl.start[u + 1]; ++k)
+        if (gl.arcs[k].to == w) in_larger = gl.arcs[k].edge;
+    if (in_larger < 0)
+      throw std::invalid_argument("persistent_homology_basis: the edge " + std::to_string(u) + "-" +
+                                  std::to_string(w) + " is not in the larger complex");
+    std::copy_n(big.edge_ann.data() + size_t(in_larger) * W, W, ann.data() + e * W);
+  }
+  regauge(g, W, own.component, ann);
+  shortest_cycles(complex, g, ann.data(), W, own.component, -1, options, out);
   return out;
 }
 

@@ -31,6 +31,7 @@ namespace claspplan::perception {
 struct HomologyOptions {
   bool fast = true;      ///< limited roots + bounded Dijkstra (false: every vertex is a root)
   int max_beta1 = 1000;  ///< above this, throw std::invalid_argument (d too small for the points)
+  int threads = 0;       ///< Dijkstra roots run on this many threads (0: all cores); same result
 };
 
 /// One basis cycle: a closed path of vertices (first vertex not repeated at the end).
@@ -60,5 +61,14 @@ std::vector<bool> bounds_in(const SimplicialComplex& larger,
 /// The shortest H1 basis (steps 1-3).
 HomologyBasis shortest_homology_basis(const SimplicialComplex& complex,
                                       const HomologyOptions& options = {});
+
+/// The loops of `complex` (K_d) that persist into `larger` (K_d', d' > d, with every edge of K_d):
+/// the shortest cycles of K_d whose classes in K_d' are independent and non-zero, a shortest basis
+/// of the image of H1(K_d) in H1(K_d'). beta1 is K_d's; cycles.size() is the image's rank, and
+/// beta1 minus it the loops that fill in. Steps 2-3 run with K_d' annotations, whose support is
+/// only the edges across persistent holes, so far fewer roots than for all of K_d's loops.
+HomologyBasis persistent_homology_basis(const SimplicialComplex& complex,
+                                        const SimplicialComplex& larger,
+                                        const HomologyOptions& options = {});
 
 }  // namespace claspplan::perception

@@ -116,32 +116,32 @@ Prepared prepare(const PerceptionInputs& in, const PerceptionOptions& o) {
   PointCloud all;
   // Depth: back-projection to the world frame, crop, supporting plane, outliers.
   if (!in.depth_views.empty()) {
+    // The support is searched a little below and around the workspace: a crop just above the
+    // table must not hide it (loop ranking needs to know where the table is). Points outside
+    // that box are never stored.
+    Eigen::AlignedBox3d around = o.workspace;
+    if (o.remove_plane && !around.isEmpty()) {
+      around.min() -= Eigen::Vector3d(kSupportMargin, kSupportMargin, kSupportMargin);
+      around.max().head<2>() += Eigen::Vector2d::Constant(kSupportMargin);
+    }
     PointCloud depth;
     size_t valid = 0;
     for (const auto& v : in.depth_views) valid += v.image.valid_count();
-    depth.reserve(valid);
+    depth.reserve(valid);  // pages are only touched by the points kept
     for (const auto& v : in.depth_views) {
       validate_camera(v.camera, "camera");
-      append_depth_points(v, depth);
+      r.input_points += append_depth_points(v, depth, around);
       r.views.push_back(v);
     }
-    if (depth.empty()) throw InputError("the depth images have no reading (all 0)");
-    r.input_points += static_cast<int>(depth.size());
+    if (r.input_points == 0) throw InputError("the depth images have no reading (all 0)");
     if (!o.workspace.isEmpty() && std::none_of(depth.begin(), depth.end(), [&](const auto& p) {
           return o.workspace.contains(p);
         }))
       throw InputError("no depth point lies inside the workspace box");
     if (o.remove_plane) {
-      // The support is searched a little below and around the workspace: a crop just above the
-      // table must not hide it (loop ranking needs to know where the table is).
-      Eigen::AlignedBox3d around = o.workspace;
-      if (!around.isEmpty()) {
-        around.min() -= Eigen::Vector3d(kSupportMargin, kSupportMargin, kSupportMargin);
-        around.max().head<2>() += Eigen::Vector2d::Constant(kSupportMargin);
-      }
       PlaneRemovalOptions po;
       po.seed = o.seed;
-      PlaneRemovalResult pr = remove_supporting_plane(crop_to_box(depth, around), po);
+      PlaneRemovalResult pr = remove_supporting_plane(depth, po);
       r.plane_points = pr.plane_points;
       if (pr.removed) r.plane = pr.plane;
       depth = std::move(pr.kept);
@@ -243,33 +243,28 @@ ObjectModel build_object_model(const PerceptionInputs& in, const PerceptionOptio
              static_cast<double>(dg.tetrahedra.size())));
 
   t = Clock::now();
-  const HomologyBasis basis = shortest_homology_basis(m.complex, o.homology);
-  m.beta1 = basis.beta1;
-  say(o, fmt("perception: beta1 = %.0f (%.0f Dijkstra roots)", basis.beta1, basis.roots));
-
-  // Stability: drop loops that the next scale fills (sampling gaps, noise).
-  std::vector<bool> fills(basis.cycles.size(), false);
-  if (o.persistence > 0 && !basis.cycles.empty()) {
+  // Stability: only the loops that the next scale keeps open (sampling gaps and noise fill in).
+  HomologyBasis basis;
+  if (o.persistence > 0) {
     // Holes a finger passes stay open to about their width; thinner tubes and sampling gaps close.
     // (Never above min_hole, so that a hole too narrow for a large hand is still reported.)
     const double min_hole = o.finger_thickness > 0
                                 ? std::min(o.min_hole, o.finger_thickness + kFingerClearance)
                                 : o.min_hole;
     m.persistence_d = std::max(o.persistence * m.d, 0.8 * min_hole);
-    std::vector<std::vector<int>> cycles;
-    for (const auto& c : basis.cycles) cycles.push_back(c.vertices);
-    fills = bounds_in(build_complex(dg, m.persistence_d), cycles);
+    basis = persistent_homology_basis(m.complex, build_complex(dg, m.persistence_d), o.homology);
+    m.unstable_loops = basis.beta1 - static_cast<int>(basis.cycles.size());
+  } else {
+    basis = shortest_homology_basis(m.complex, o.homology);
   }
+  m.beta1 = basis.beta1;
   m.timings.homology = seconds_since(t);
+  say(o, fmt("perception: beta1 = %.0f (%.0f Dijkstra roots)", basis.beta1, basis.roots));
 
   t = Clock::now();
-  for (std::size_t i = 0; i < basis.cycles.size(); ++i) {
-    if (fills[i]) {
-      ++m.unstable_loops;
-      continue;
-    }
+  for (const BasisCycle& c : basis.cycles) {
     Loop l;
-    l.vertices = basis.cycles[i].vertices;
+    l.vertices = c.vertices;
     for (int v : l.vertices) l.points.push_back(m.cloud[v]);
     m.loops.push_back(std::move(l));
   }

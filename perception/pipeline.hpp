@@ -12,11 +12,12 @@
 //     cost. Then farthest-point sampling to N from a seeded start: nearly uniform spacing,
 //     deterministic with the seed; the N points are then put in Morton order (locality).
 //  3. d: given, or automatic_d() = 3.5 x the mean nearest-neighbour spacing of the N points.
-//  4. K_d from the CGAL 3-D Delaunay triangulation; the exact shortest H1 basis over Z2.
-//  5. Only stable loops are kept: a loop whose class is zero in K_d' (d' = persistence x d, and at
-//     least 0.8 x the narrowest hole a finger passes: min_hole, or the hand's fingers + 1 cm if
-//     less) is a sampling gap or a thin tube's wall that a coarser scale fills, not a hole a hand
-//     can use; so more points (a smaller d) never mean more loops. Holes a finger can pass survive.
+//  4. K_d from the CGAL 3-D Delaunay triangulation.
+//  5. Only stable loops: the shortest cycles of K_d whose classes stay independent and non-zero in
+//     K_d' (d' = persistence x d, and at least 0.8 x the narrowest hole a finger passes: min_hole,
+//     or the hand's fingers + 1 cm if less), exactly, over Z2. A loop that K_d' fills is a sampling
+//     gap or a thin tube's wall, not a hole a hand can use; so more points (a smaller d) never mean
+//     more loops. Holes a finger can pass survive.
 //  6. Loops ranked (loops.hpp), for the hand if its sizes are given; k clasp targets on the best
 //     loop if it is claspable, where its bar fits the hand.
 #pragma once
@@ -92,7 +93,7 @@ struct ObjectModel {
   double mean_spacing = 0.0;         ///< of the N points
   int beta1 = 0;                     ///< of K_d
   double persistence_d = 0.0;        ///< d' of the stability test (0: not tested)
-  int unstable_loops = 0;            ///< basis loops dropped: they bound in K_d'
+  int unstable_loops = 0;            ///< beta1 minus the stable loops: K_d' fills them in
   std::vector<Loop> loops;           ///< the stable ones, ranked, best first
   std::vector<ClaspTarget> targets;  ///< on loops[0] if it is claspable, else empty
   std::vector<DepthView> views;      ///< cameras used by the occlusion test

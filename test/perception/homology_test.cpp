@@ -146,6 +146,58 @@ TEST(Homology, FastPathEqualsAllRootsOnRandomComplexes) {
   EXPECT_GT(loops, 500);
 }
 
+// The loops that persist from K_d to K_d': the fast path, the all-roots search and one thread give
+// the same lengths (the fast path and the thread count the same loops); none of them bounds in
+// K_d'; and there are never more than the K_d basis loops that do not bound there.
+TEST(Homology, PersistentBasisOnRandomComplexes) {
+  std::mt19937_64 rng(2025);
+  std::uniform_real_distribution<double> uni(0.0, 1.0);
+  std::normal_distribution<double> gauss(0.0, 1.0);
+  int with_loops = 0, fewer = 0;
+  for (int trial = 0; trial < 60; ++trial) {
+    const int n = 150 + static_cast<int>(uni(rng) * 250);
+    PointCloud pts;
+    for (int i = 0; i < n; ++i) {
+      const double u = 2 * M_PI * uni(rng), v = 2 * M_PI * uni(rng);
+      Eigen::Vector3d p((1.0 + 0.35 * std::cos(v)) * std::cos(u),
+                        (1.0 + 0.35 * std::cos(v)) * std::sin(u), 0.35 * std::sin(v));
+      if (trial % 2 && i % 2) p = Eigen::Vector3d(p.x() + 1.0, p.z(), p.y());  // a linked ring
+      pts.push_back(p + 0.01 * Eigen::Vector3d(gauss(rng), gauss(rng), gauss(rng)));
+    }
+    const DelaunayGraph dg = delaunay_3d(pts);
+    const double d = (2.0 + 1.5 * uni(rng)) * mean_spacing(pts);
+    const SimplicialComplex k = build_complex(dg, d),
+                            larger = build_complex(dg, d * (1.2 + uni(rng)));
+    HomologyOptions all, one;
+    all.fast = false;
+    one.threads = 1;
+    const HomologyBasis fast = persistent_homology_basis(k, larger);
+    const HomologyBasis ref = persistent_homology_basis(k, larger, all);
+    const HomologyBasis single = persistent_homology_basis(k, larger, one);
+    ASSERT_EQ(fast.beta1, betti_1(k));
+    ASSERT_EQ(fast.cycles.size(), ref.cycles.size()) << "trial " << trial;
+    ASSERT_EQ(fast.cycles.size(), single.cycles.size());
+    std::vector<std::vector<int>> cycles;
+    for (size_t i = 0; i < ref.cycles.size(); ++i) {
+      ASSERT_NEAR(fast.cycles[i].length, ref.cycles[i].length, 1e-9) << "trial " << trial;
+      ASSERT_EQ(fast.cycles[i].vertices, single.cycles[i].vertices) << "trial " << trial;
+      cycles.push_back(fast.cycles[i].vertices);
+    }
+    for (bool bounds : bounds_in(larger, cycles)) EXPECT_FALSE(bounds) << "trial " << trial;
+    const HomologyBasis basis = shortest_homology_basis(k);
+    std::vector<std::vector<int>> basis_cycles;
+    for (const auto& c : basis.cycles) basis_cycles.push_back(c.vertices);
+    const std::vector<bool> fill = bounds_in(larger, basis_cycles);
+    const size_t stay = static_cast<size_t>(std::count(fill.begin(), fill.end(), false));
+    EXPECT_LE(fast.cycles.size(), stay) << "trial " << trial;
+    EXPECT_EQ(fast.cycles.empty(), stay == 0) << "trial " << trial;
+    with_loops += !fast.cycles.empty();
+    fewer += fast.cycles.size() < static_cast<size_t>(fast.beta1);
+  }
+  EXPECT_GT(with_loops, 30);
+  EXPECT_GT(fewer, 20);  // loops did fill in
+}
+
 // The reduction skips each tetrahedron's last face (its boundary is the sum of the other three):
 // the same loops, classes and persistence verdicts as without the tetrahedra, on thick complexes
 // (d up to 4 times the spacing) where many faces are skipped.
