@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <mutex>
 #include <stdexcept>
 
 #include <fcl/geometry/bvh/BVH_model.h>
@@ -115,14 +116,46 @@ bool fcl_collide(const fcl::CollisionGeometryd* a, const Eigen::Isometry3d& ta,
 
 // The object's collision geometry, never modified once built (shared by worlds and threads).
 struct ObjectGeometry {
-  std::shared_ptr<Mesh> mesh;                // OBBRSS: distances
+  // OBBRSS, for distances. With the tree, only collisions are usual (the secure-clasp check): the
+  // mesh is built at the first distance query, once for all threads.
+  std::shared_ptr<Mesh> mesh;
+  std::vector<fcl::Vector3d> mesh_vertices;
+  std::vector<fcl::Triangle> mesh_triangles;
+  std::once_flag mesh_built;
   std::shared_ptr<const TriangleTree> tree;  // exact spheres and capsules, when built for them
   // What collision queries test: `mesh`, or with the tree the same mesh in OBBs, whose bound of
   // a primitive FCL computes in closed form (OBBRSS fits one to its corners each query).
   Geometry collide;
   int triangles = 0;
   Box3 local_box;
+
+  const Mesh& distance_mesh() const;
 };
+
+namespace {
+
+template <class Model>
+std::shared_ptr<Model> build_bvh(const std::vector<fcl::Vector3d>& vertices,
+                                 const std::vector<fcl::Triangle>& triangles) {
+  auto model = std::make_shared<Model>();
+  model->beginModel(static_cast<int>(triangles.size()), static_cast<int>(vertices.size()));
+  model->addSubModel(vertices, triangles);
+  model->endModel();
+  model->computeLocalAABB();
+  return model;
+}
+
+}  // namespace
+
+const Mesh& ObjectGeometry::distance_mesh() const {
+  auto& self = const_cast<ObjectGeometry&>(*this);
+  std::call_once(self.mesh_built, [&self] {
+    if (!self.mesh) self.mesh = build_bvh<Mesh>(self.mesh_vertices, self.mesh_triangles);
+    self.mesh_vertices = {};
+    self.mesh_triangles = {};
+  });
+  return *mesh;
+}
 
 struct CollisionWorld::Impl {
   RobotModel model;
@@ -313,20 +346,16 @@ std::shared_ptr<const ObjectGeometry> make_object_geometry(
   }
   if (t.empty()) throw std::invalid_argument("collision object: no usable triangle");
   auto g = std::make_shared<ObjectGeometry>();
-  const auto build = [&](auto model) {
-    model->beginModel(static_cast<int>(t.size()), n);
-    model->addSubModel(v, t);
-    model->endModel();
-    model->computeLocalAABB();
-    return model;
-  };
-  g->mesh = build(std::make_shared<Mesh>());
-  g->collide = g->mesh;
+  g->triangles = static_cast<int>(t.size());
   if (exact_round_shapes) {
     g->tree = std::make_shared<TriangleTree>(vertices, triangles);
-    g->collide = build(std::make_shared<fcl::BVHModel<fcl::OBBd>>());
+    g->collide = build_bvh<fcl::BVHModel<fcl::OBBd>>(v, t);
+    g->mesh_vertices = std::move(v);
+    g->mesh_triangles = std::move(t);
+  } else {
+    g->mesh = build_bvh<Mesh>(v, t);
+    g->collide = g->mesh;
   }
-  g->triangles = static_cast<int>(t.size());
   g->local_box = b;
   return g;
 }
@@ -488,13 +517,13 @@ double CollisionWorld::link_object_distance(const RobotData& data, int link, dou
     m.place(data, s);
     const Eigen::Isometry3d local = m.object_pose_inv * m.tf[s];
     if (m.shapes[s].primitive.bounds(local).distance(m.object->local_box) >= best) continue;
-    if (fcl_collide(m.shapes[s].geometry.get(), m.tf[s], m.object->mesh.get(), m.object_pose))
-      return 0.0;
+    const Mesh& mesh = m.object->distance_mesh();
+    if (fcl_collide(m.shapes[s].geometry.get(), m.tf[s], &mesh, m.object_pose)) return 0.0;
     // FCL's own GJK is ~1.7x faster than libccd for mesh distances (measured); not for collisions.
     fcl::DistanceRequestd request(false, false, 0.0, 0.0, 1e-6, fcl::GST_INDEP);
     fcl::DistanceResultd result;
-    const double d = fcl::distance(m.shapes[s].geometry.get(), m.tf[s], m.object->mesh.get(),
-                                   m.object_pose, request, result);
+    const double d =
+        fcl::distance(m.shapes[s].geometry.get(), m.tf[s], &mesh, m.object_pose, request, result);
     best = std::min(best, std::max(0.0, d));
   }
   return best;

@@ -88,6 +88,22 @@ double segment_triangle_distance_sq(const Vector3d& p0, const Vector3d& p1, cons
   return std::min(best, segment_segment_distance_sq(p0, p1, c, a));
 }
 
+namespace {
+
+// segment_triangle_distance_sq(...) <= r2, stopping at the first candidate pair within reach
+// (the same answer: the distance is the least of the candidates).
+bool segment_triangle_within(const Vector3d& p0, const Vector3d& p1, const Vector3d& a,
+                             const Vector3d& b, const Vector3d& c, double r2) {
+  return segment_crosses_triangle(p0, p1, a, b, c) ||
+         (closest_on_triangle(p0, a, b, c) - p0).squaredNorm() <= r2 ||
+         (closest_on_triangle(p1, a, b, c) - p1).squaredNorm() <= r2 ||
+         segment_segment_distance_sq(p0, p1, a, b) <= r2 ||
+         segment_segment_distance_sq(p0, p1, b, c) <= r2 ||
+         segment_segment_distance_sq(p0, p1, c, a) <= r2;
+}
+
+}  // namespace
+
 TriangleTree::TriangleTree(const std::vector<Eigen::Vector3d>& vertices,
                            const std::vector<Eigen::Vector3i>& triangles) {
   std::vector<Vector3d> centres;
@@ -96,8 +112,12 @@ TriangleTree::TriangleTree(const std::vector<Eigen::Vector3d>& vertices,
     const Vector3d& a = vertices[t[0]];
     Vector3d n = (vertices[t[1]] - a).cross(vertices[t[2]] - a);
     n = n.norm() > 1e-300 ? Vector3d(n.normalized()) : Vector3d::Zero();
-    triangles_.push_back({a, vertices[t[1]], vertices[t[2]], n});
-    centres.push_back((vertices[t[0]] + vertices[t[1]] + vertices[t[2]]) / 3.0);
+    const Vector3d centre = (a + vertices[t[1]] + vertices[t[2]]) / 3.0;
+    const double reach =
+        std::sqrt(std::max({(a - centre).squaredNorm(), (vertices[t[1]] - centre).squaredNorm(),
+                            (vertices[t[2]] - centre).squaredNorm()}));
+    triangles_.push_back({a, vertices[t[1]], vertices[t[2]], n, centre, reach});
+    centres.push_back(centre);
   }
   if (!triangles_.empty()) build(0, static_cast<int>(triangles_.size()), centres);
 }
@@ -141,6 +161,7 @@ bool TriangleTree::touches_capsule(const Vector3d& p0, const Vector3d& p1, doubl
   const Eigen::AlignedBox3d reach(p0.cwiseMin(p1) - r, p0.cwiseMax(p1) + r);
   const double r2 = radius * radius;
   const Vector3d d = p1 - p0;
+  const double dd = std::max(d.squaredNorm(), 1e-300);
   // Does the segment meet the box grown by the radius (slabs)? The capsule lies inside that
   // segment's sweep, so a miss is a miss of the capsule.
   const auto near_box = [&](const Eigen::AlignedBox3d& box) {
@@ -171,7 +192,11 @@ bool TriangleTree::touches_capsule(const Vector3d& p0, const Vector3d& p1, doubl
         // Both ends farther than the radius on one side of the triangle's plane: apart.
         const double s0 = t.normal.dot(p0 - t.a), s1 = t.normal.dot(p1 - t.a);
         if ((s0 > radius && s1 > radius) || (s0 < -radius && s1 < -radius)) continue;
-        if (segment_triangle_distance_sq(p0, p1, t.a, t.b, t.c) <= r2) return true;
+        // The segment farther than the radius from the triangle's bounding sphere: apart.
+        const double along = std::clamp((t.centre - p0).dot(d) / dd, 0.0, 1.0);
+        const double apart = radius + t.reach;
+        if ((p0 + along * d - t.centre).squaredNorm() > apart * apart) continue;
+        if (segment_triangle_within(p0, p1, t.a, t.b, t.c, r2)) return true;
       }
     } else {
       stack[top++] = node.left;

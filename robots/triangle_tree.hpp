@@ -36,6 +36,8 @@ class TriangleTree {
   struct Triangle {
     Eigen::Vector3d a, b, c;
     Eigen::Vector3d normal;  // unit, or zero for a sliver
+    Eigen::Vector3d centre;  // of the bounding sphere: the centroid ...
+    double reach = 0.0;      // ... and its distance to the farthest vertex
   };
   int build(int first, int count, std::vector<Eigen::Vector3d>& centres);
 
