@@ -3,7 +3,6 @@
 #include <algorithm>
 #include <cmath>
 #include <numeric>
-#include <queue>
 #include <random>
 #include <stdexcept>
 
@@ -185,6 +184,116 @@ PointCloud remove_statistical_outliers(const PointCloud& cloud, int k, double st
   return out;
 }
 
+namespace {
+
+// Farthest-point sampling state: each point's squared distance to the nearest pick, in a binary
+// tree of boxes over the points whose nodes keep the largest value below them (and its point).
+// A new pick lowers only values larger than its distance, so a subtree whose box is at least
+// its largest value away is skipped whole: most of the cloud, once the picks are dense.
+class FarthestPoints {
+ public:
+  FarthestPoints(const PointCloud& cloud, int start) : cloud_(cloud), value_(cloud.size()) {
+    for (std::size_t i = 0; i < cloud.size(); ++i)
+      value_[i] = (cloud[i] - cloud[start]).squaredNorm();
+    order_.resize(cloud.size());
+    std::iota(order_.begin(), order_.end(), 0);
+    build(0, static_cast<int>(cloud.size()));
+  }
+
+  /// The point with the largest value (ties: the larger index) and that value.
+  std::pair<double, int> top() const { return {nodes_[0].best, nodes_[0].best_index}; }
+
+  /// Picks point i: its value becomes 0, and every value above its distance to i that distance.
+  void pick(int i) {
+    value_[i] = 0.0;
+    update(0, cloud_[i]);
+  }
+
+ private:
+  struct Node {
+    Eigen::Vector3d lo, hi;
+    int begin = 0, end = 0;     // the points order_[begin, end)
+    int left = -1, right = -1;  // children; -1 for a leaf
+    double best = 0.0;
+    int best_index = -1;
+  };
+  static constexpr int kLeaf = 8;
+
+  int build(int begin, int end) {
+    const int index = static_cast<int>(nodes_.size());
+    nodes_.emplace_back();
+    Eigen::AlignedBox3d box;
+    for (int k = begin; k < end; ++k) box.extend(cloud_[order_[k]]);
+    nodes_[index].lo = box.min();
+    nodes_[index].hi = box.max();
+    nodes_[index].begin = begin;
+    nodes_[index].end = end;
+    if (end - begin > kLeaf) {
+      int axis = 0;
+      box.sizes().maxCoeff(&axis);
+      const int mid = begin + (end - begin) / 2;
+      std::nth_element(order_.begin() + begin, order_.begin() + mid, order_.begin() + end,
+                       [&](int a, int b) { return cloud_[a][axis] < cloud_[b][axis]; });
+      const int left = build(begin, mid);
+      const int right = build(mid, end);
+      nodes_[index].left = left;
+      nodes_[index].right = right;
+    }
+    refresh(nodes_[index]);
+    return index;
+  }
+
+  void refresh(Node& n) {
+    const auto better = [](double v, int i, double w, int j) { return v > w || (v == w && i > j); };
+    n.best = -1.0;
+    n.best_index = -1;
+    if (n.left < 0) {
+      for (int k = n.begin; k < n.end; ++k) {
+        const int i = order_[k];
+        if (better(value_[i], i, n.best, n.best_index)) n.best = value_[i], n.best_index = i;
+      }
+      return;
+    }
+    for (const Node* c : {&nodes_[n.left], &nodes_[n.right]})
+      if (better(c->best, c->best_index, n.best, n.best_index))
+        n.best = c->best, n.best_index = c->best_index;
+  }
+
+  // The box's squared distance is a lower bound of every point's in it, rounding included (the
+  // same sum of terms, each no larger).
+  void update(int index, const Eigen::Vector3d& p) {
+    Node& n = nodes_[index];
+    double box = 0.0;
+    for (int k = 0; k < 3; ++k) {
+      const double d = p[k] < n.lo[k] ? n.lo[k] - p[k] : (p[k] > n.hi[k] ? p[k] - n.hi[k] : 0.0);
+      box += d * d;
+    }
+    if (box >= n.best) return;
+    if (n.left < 0) {
+      for (int k = n.begin; k < n.end; ++k) {
+        const int j = order_[k];
+        double d2 = 0.0;
+        for (int a = 0; a < 3; ++a) {
+          const double d = p[a] - cloud_[j][a];
+          d2 += d * d;
+        }
+        if (d2 < value_[j]) value_[j] = d2;
+      }
+    } else {
+      update(n.left, p);
+      update(n.right, p);
+    }
+    refresh(n);
+  }
+
+  const PointCloud& cloud_;
+  std::vector<double> value_;
+  std::vector<int> order_;
+  std::vector<Node> nodes_;
+};
+
+}  // namespace
+
 std::vector<int> farthest_point_indices(const PointCloud& cloud, int count, std::uint64_t seed) {
   const int m = static_cast<int>(cloud.size());
   std::vector<int> picked;
@@ -196,35 +305,14 @@ std::vector<int> farthest_point_indices(const PointCloud& cloud, int count, std:
   }
   std::mt19937_64 rng(seed);
   const int start = static_cast<int>(uniform_index(rng(), m));
-  PointIndex index(cloud);
-  std::vector<double> mind2(m);
-  std::vector<std::pair<double, int>> heap_data(m);
-  for (int i = 0; i < m; ++i) {
-    mind2[i] = (cloud[i] - cloud[start]).squaredNorm();
-    heap_data[i] = {mind2[i], i};
-  }
-  std::priority_queue<std::pair<double, int>> heap(std::less<std::pair<double, int>>(),
-                                                   std::move(heap_data));
+  FarthestPoints state(cloud, start);
   picked.reserve(count);
-  picked.push_back(start);
-  mind2[start] = 0.0;
-  std::vector<std::pair<unsigned, double>> near;
-  while (static_cast<int>(picked.size()) < count && !heap.empty()) {
-    const auto [d2, i] = heap.top();
-    heap.pop();
-    if (d2 != mind2[i]) continue;  // stale entry
-    if (d2 <= 0.0) break;          // only duplicates of picked points remain
+  picked.push_back(start);  // its value is already 0
+  while (static_cast<int>(picked.size()) < count) {
+    const auto [d2, i] = state.top();
+    if (d2 <= 0.0) break;  // only duplicates of picked points remain
     picked.push_back(i);
-    mind2[i] = 0.0;
-    // Only points closer to the new pick than to all earlier ones change, and all of those are
-    // within the current maximum distance sqrt(d2).
-    index.radius(cloud[i], std::sqrt(d2), near);
-    for (const auto& [j, dj2] : near) {
-      if (dj2 < mind2[j]) {
-        mind2[j] = dj2;
-        heap.emplace(dj2, static_cast<int>(j));
-      }
-    }
+    state.pick(i);
   }
   return picked;
 }

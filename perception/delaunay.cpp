@@ -2,7 +2,9 @@
 #include <algorithm>
 #include <array>
 #include <cstdint>
+#include <future>
 #include <stdexcept>
+#include <thread>
 #include <utility>
 
 #include <CGAL/Delaunay_triangulation_3.h>
@@ -10,7 +12,6 @@
 #include <CGAL/Triangulation_data_structure_3.h>
 #include <CGAL/Triangulation_vertex_base_with_info_3.h>
 
-#include "perception/cloud_filters.hpp"
 #include "perception/complex.hpp"
 #include "perception/input_error.hpp"
 
@@ -23,30 +24,40 @@ using Tds = CGAL::Triangulation_data_structure_3<Vb>;
 using Delaunay = CGAL::Delaunay_triangulation_3<Kernel, Tds>;
 
 // Distinct simplices keyed by their lowest vertex: per vertex (CSR), the other vertices packed in
-// 21 bits each, sorted. Bucketing by the lowest vertex keeps every sort a few dozen items long.
+// 21 bits each, sorted.
 class Simplices {
  public:
   static std::uint64_t pack(int b, int c = 0) {
     return (std::uint64_t(b) << 21) | std::uint64_t(c);
   }
-  Simplices(int n, const std::vector<std::pair<int, std::uint64_t>>& items) : start_(n + 1, 0) {
-    for (const auto& it : items) ++start_[it.first + 1];
-    for (int v = 0; v < n; ++v) start_[v + 1] += start_[v];
-    rest_.resize(items.size());
-    std::vector<int> fill(start_.begin(), start_.end() - 1);
-    for (const auto& it : items) rest_[fill[it.first]++] = it.second;
-    // Sort and de-duplicate each bucket, compacting in place.
-    int out = 0;
-    for (int v = 0; v < n; ++v) {
-      const auto b = rest_.begin() + start_[v], e = rest_.begin() + start_[v + 1];
-      std::sort(b, e);
-      const int kept = static_cast<int>(std::unique(b, e) - b);
-      std::copy(b, b + kept, rest_.begin() + out);
-      start_[v] = out;
-      out += kept;
+  /// The edges (`faces` false) or triangles of the sorted cells, from each vertex's incident cells
+  /// (`incident`: CSR over vertices, each entry a cell and the vertex's place in it): the
+  /// vertices after it in a cell give its edges and faces. Each vertex's few dozen candidates are
+  /// sorted in place, so no list of every cell's faces is ever stored.
+  Simplices(const std::vector<std::array<int, 4>>& cells, const std::vector<int>& incident_start,
+            const std::vector<std::pair<int, int>>& incident, bool faces) {
+    const int n = static_cast<int>(incident_start.size()) - 1;
+    start_.assign(n + 1, 0);
+    rest_.reserve(faces ? 3 * cells.size() : 2 * cells.size());
+    std::vector<std::uint64_t> found;
+    for (int a = 0; a < n; ++a) {
+      found.clear();
+      for (int k = incident_start[a]; k < incident_start[a + 1]; ++k) {
+        const auto& [cell, place] = incident[k];
+        const std::array<int, 4>& c = cells[cell];
+        for (int i = place + 1; i < 4; ++i) {
+          if (!faces) {
+            found.push_back(pack(c[i]));
+            continue;
+          }
+          for (int j = i + 1; j < 4; ++j) found.push_back(pack(c[i], c[j]));
+        }
+      }
+      std::sort(found.begin(), found.end());
+      found.erase(std::unique(found.begin(), found.end()), found.end());
+      rest_.insert(rest_.end(), found.begin(), found.end());
+      start_[a + 1] = static_cast<int>(rest_.size());
     }
-    start_[n] = out;
-    rest_.resize(out);
   }
   int size() const { return static_cast<int>(rest_.size()); }
   int first(int v) const { return start_[v]; }
@@ -70,16 +81,17 @@ DelaunayGraph delaunay_3d(const PointCloud& points) {
   for (size_t i = 0; i < points.size(); ++i)
     if (!points[i].allFinite())
       throw InputError("point " + std::to_string(i) + " has a NaN or infinite coordinate");
-  const size_t distinct = unique_points(points).size();
-  if (distinct < 4)
-    throw InputError("fewer than 4 distinct points (" + std::to_string(distinct) +
-                     "): a 3-D triangulation needs at least 4");
+  const int n = static_cast<int>(points.size());
+  if (n >= (1 << 21)) throw InputError("more than 2,097,151 points for the Delaunay triangulation");
   std::vector<std::pair<Kernel::Point_3, int>> input;
   input.reserve(points.size());
   for (size_t i = 0; i < points.size(); ++i)
     input.emplace_back(Kernel::Point_3(points[i].x(), points[i].y(), points[i].z()),
                        static_cast<int>(i));
-  Delaunay dt(input.begin(), input.end());  // spatially sorted insertion
+  Delaunay dt(input.begin(), input.end());  // spatially sorted insertion; duplicates merged
+  if (dt.number_of_vertices() < 4)
+    throw InputError("fewer than 4 distinct points (" + std::to_string(dt.number_of_vertices()) +
+                     "): a 3-D triangulation needs at least 4");
   if (dt.dimension() < 3)
     throw InputError(dt.dimension() == 2
                          ? "all points are coplanar: K_d needs points that span 3-D"
@@ -88,8 +100,6 @@ DelaunayGraph delaunay_3d(const PointCloud& points) {
   // in lexicographic vertex order, which is also the order of their sorted face ids (edge ab comes
   // before ac and ac before bc when a < b < c): a canonical order, independent of CGAL's memory
   // addresses, so that results are identical from run to run.
-  const int n = static_cast<int>(points.size());
-  if (n >= (1 << 21)) throw InputError("more than 2,097,151 points for the Delaunay triangulation");
   std::vector<std::array<int, 4>> cells;
   cells.reserve(dt.number_of_finite_cells());
   for (auto c = dt.finite_cells_begin(); c != dt.finite_cells_end(); ++c) {
@@ -99,18 +109,40 @@ DelaunayGraph delaunay_3d(const PointCloud& points) {
     cells.push_back(v);
   }
   std::sort(cells.begin(), cells.end());
-  constexpr int kPairs[6][2] = {{0, 1}, {0, 2}, {0, 3}, {1, 2}, {1, 3}, {2, 3}};
-  constexpr int kFaces[4][3] = {{0, 1, 2}, {0, 1, 3}, {0, 2, 3}, {1, 2, 3}};
-  std::vector<std::pair<int, std::uint64_t>> items;
-  items.reserve(6 * cells.size());
+  // Each vertex's incident cells, with its place in the cell's sorted vertices.
+  std::vector<int> incident_start(n + 1, 0);
   for (const auto& c : cells)
-    for (const auto& p : kPairs) items.emplace_back(c[p[0]], Simplices::pack(c[p[1]]));
-  const Simplices edges(n, items);
-  items.clear();
-  for (const auto& c : cells)
-    for (const auto& f : kFaces) items.emplace_back(c[f[0]], Simplices::pack(c[f[1]], c[f[2]]));
-  const Simplices faces(n, items);
-  items = {};
+    for (int v : c) ++incident_start[v + 1];
+  for (int v = 0; v < n; ++v) incident_start[v + 1] += incident_start[v];
+  std::vector<std::pair<int, int>> incident(4 * cells.size());
+  {
+    std::vector<int> fill(incident_start.begin(), incident_start.end() - 1);
+    for (int k = 0; k < static_cast<int>(cells.size()); ++k)
+      for (int i = 0; i < 4; ++i) incident[fill[cells[k][i]]++] = {k, i};
+  }
+  // The edges and the triangles side by side, then the tetrahedra beside the rest: each list is
+  // built whole by one thread, so the result does not depend on how many run.
+  const auto launch =
+      std::thread::hardware_concurrency() > 1 ? std::launch::async : std::launch::deferred;
+  auto faces_later =
+      std::async(launch, [&] { return Simplices(cells, incident_start, incident, true); });
+  const Simplices edges(cells, incident_start, incident, false);
+  const Simplices faces = faces_later.get();
+  incident = {};
+  auto tetrahedra_later = std::async(launch, [&] {
+    constexpr int kFaces[4][3] = {{0, 1, 2}, {0, 1, 3}, {0, 2, 3}, {1, 2, 3}};
+    std::vector<std::array<int, 4>> tetrahedra;
+    tetrahedra.reserve(cells.size());
+    for (const auto& c : cells) {
+      std::array<int, 4> t;
+      for (int i = 0; i < 4; ++i) {
+        const int* f = kFaces[i];
+        t[i] = faces.find(c[f[0]], Simplices::pack(c[f[1]], c[f[2]]));  // ascending
+      }
+      tetrahedra.push_back(t);
+    }
+    return tetrahedra;
+  });
 
   DelaunayGraph g;
   g.points = points;
@@ -130,15 +162,7 @@ DelaunayGraph delaunay_3d(const PointCloud& points) {
       const int c = static_cast<int>(faces.rest(i) & ((1u << 21) - 1));
       g.triangles.push_back({edge_id(a, b), edge_id(a, c), edge_id(b, c)});  // ascending
     }
-  g.tetrahedra.reserve(cells.size());
-  for (const auto& c : cells) {
-    std::array<int, 4> t;
-    for (int i = 0; i < 4; ++i) {
-      const int* f = kFaces[i];
-      t[i] = faces.find(c[f[0]], Simplices::pack(c[f[1]], c[f[2]]));  // ascending
-    }
-    g.tetrahedra.push_back(t);
-  }
+  g.tetrahedra = tetrahedra_later.get();
   return g;
 }
 

@@ -1,0 +1,72 @@
+// Farthest-point sampling against its definition, computed by brute force: every pick is the
+// point farthest from all earlier picks (ties: the larger index), on random clouds, on a grid
+// (many equal distances) and with duplicate points.
+#include "perception/cloud_filters.hpp"
+
+#include <random>
+
+#include <gtest/gtest.h>
+
+#include "perception/random_draws.hpp"
+
+namespace claspplan::perception {
+namespace {
+
+std::vector<int> brute_force_farthest(const PointCloud& cloud, int count, std::uint64_t seed) {
+  const int m = static_cast<int>(cloud.size());
+  std::mt19937_64 rng(seed);
+  const int start = static_cast<int>(uniform_index(rng(), m));
+  std::vector<double> nearest(m);
+  for (int i = 0; i < m; ++i) nearest[i] = (cloud[i] - cloud[start]).squaredNorm();
+  std::vector<int> picked{start};
+  while (static_cast<int>(picked.size()) < count) {
+    int best = 0;
+    for (int i = 1; i < m; ++i)
+      if (nearest[i] >= nearest[best]) best = i;
+    if (nearest[best] <= 0.0) break;
+    picked.push_back(best);
+    for (int j = 0; j < m; ++j) {
+      double d2 = 0.0;
+      for (int a = 0; a < 3; ++a)
+        d2 += (cloud[best][a] - cloud[j][a]) * (cloud[best][a] - cloud[j][a]);
+      if (d2 < nearest[j]) nearest[j] = d2;
+    }
+  }
+  return picked;
+}
+
+TEST(FarthestPointSampling, MatchesItsDefinition) {
+  std::mt19937_64 rng(11);
+  std::uniform_real_distribution<double> u(-0.2, 0.2);
+  for (int trial = 0; trial < 12; ++trial) {
+    PointCloud cloud;
+    const int n = 200 + 150 * trial;
+    for (int i = 0; i < n; ++i) {
+      if (trial % 3 == 0) {
+        // A 1 cm grid: many points at equal distances, so ties decide.
+        cloud.emplace_back(0.01 * (i % 7), 0.01 * ((i / 7) % 9), 0.01 * (i / 63));
+      } else {
+        cloud.emplace_back(u(rng), u(rng), 0.3 * u(rng));
+      }
+    }
+    if (trial % 3 == 1) {
+      for (int i = 0; i < n / 10; ++i) cloud.push_back(cloud[(7 * i) % n]);  // duplicates
+    }
+    for (const int count : {1, 2, n / 10, n / 2, static_cast<int>(cloud.size()) - 1}) {
+      SCOPED_TRACE("trial " + std::to_string(trial) + ", count " + std::to_string(count));
+      EXPECT_EQ(farthest_point_indices(cloud, count, 5 + trial),
+                brute_force_farthest(cloud, count, 5 + trial));
+    }
+  }
+}
+
+TEST(FarthestPointSampling, StopsAtDuplicatesAndTakesAllWhenAskedForMore) {
+  const PointCloud cloud(5, Eigen::Vector3d(0.1, 0.2, 0.3));
+  EXPECT_EQ(farthest_point_indices(cloud, 3, 1).size(), 1u);  // one distinct point
+  const PointCloud two{{0, 0, 0}, {1, 0, 0}};
+  EXPECT_EQ(farthest_point_indices(two, 5, 1), (std::vector<int>{0, 1}));
+  EXPECT_TRUE(farthest_point_indices({}, 3, 1).empty());
+}
+
+}  // namespace
+}  // namespace claspplan::perception
