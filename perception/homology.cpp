@@ -599,15 +599,23 @@ HomologyBasis shortest_homology_basis(const SimplicialComplex& complex,
 HomologyBasis persistent_homology_basis(const SimplicialComplex& complex,
                                         const SimplicialComplex& larger,
                                         const HomologyOptions& options) {
-  // K_d's own reduction (beta1 and components) and K_d''s annotations are independent: with more
-  // than one thread they run side by side.
-  const Graph g(complex), gl(larger);
-  auto own_reduction = [&] { return annotate(complex, g, false, options.max_beta1); };
-  std::future<Annotation> own_later;
+  // K_d''s graph and annotations, and K_d's own graph and reduction (beta1 and components), are
+  // independent: with more than one thread they are built side by side.
+  std::unique_ptr<Graph> gl;
+  Annotation big;
+  const auto larger_reduction = [&] {
+    gl = std::make_unique<Graph>(larger);
+    big = annotate(larger, *gl, true, std::numeric_limits<int>::max());
+  };
+  std::future<void> larger_later;
   if (options.threads != 1 && std::thread::hardware_concurrency() > 1)
-    own_later = std::async(std::launch::async, own_reduction);
-  const Annotation big = annotate(larger, gl, true, std::numeric_limits<int>::max());
-  const Annotation own = own_later.valid() ? own_later.get() : own_reduction();
+    larger_later = std::async(std::launch::async, larger_reduction);
+  const Graph g(complex);
+  const Annotation own = annotate(complex, g, false, options.max_beta1);
+  if (larger_later.valid())
+    larger_later.get();
+  else
+    larger_reduction();
   HomologyBasis out;
   out.beta1 = own.beta1;
   if (own.beta1 == 0 || big.beta1 == 0) return out;
@@ -617,9 +625,9 @@ HomologyBasis persistent_homology_basis(const SimplicialComplex& complex,
   for (size_t e = 0; e < complex.edges.size(); ++e) {
     const int u = complex.edges[e][0], w = complex.edges[e][1];
     int in_larger = -1;
-    if (u < gl.n)
-      for (int k = gl.start[u]; k < gl.start[u + 1]; ++k)
-        if (gl.arcs[k].to == w) in_larger = gl.arcs[k].edge;
+    if (u < gl->n)
+      for (int k = gl->start[u]; k < gl->start[u + 1]; ++k)
+        if (gl->arcs[k].to == w) in_larger = gl->arcs[k].edge;
     if (in_larger < 0)
       throw std::invalid_argument("persistent_homology_basis: the edge " + std::to_string(u) + "-" +
                                   std::to_string(w) + " is not in the larger complex");
