@@ -90,12 +90,31 @@ Annotation annotate(const SimplicialComplex& k, const Graph& g, bool need_annota
     std::sort(b.c.begin(), b.c.begin() + b.size);
     if (b.size > 0) order.push_back(static_cast<int>(t));
   }
-  std::sort(order.begin(), order.end(), [&](int i, int j) {
-    const Boundary &x = columns[i], &y = columns[j];
-    if (x.low() != y.low()) return x.low() < y.low();
-    return std::lexicographical_compare(x.c.begin(), x.c.begin() + x.size, y.c.begin(),
-                                        y.c.begin() + y.size);
-  });
+  // Reduction order: by low, then lexicographically, then by index. The lows are coordinates
+  // below kc, so the columns are bucketed by low first (a counting sort) and only each bucket's
+  // few columns are compared.
+  {
+    std::vector<int> next(kc + 1, 0);
+    for (int t : order) ++next[columns[t].low() + 1];
+    std::partial_sum(next.begin(), next.end(), next.begin());
+    std::vector<int> by_low(order.size());
+    for (int t : order) by_low[next[columns[t].low()]++] = t;
+    const auto lexicographic = [&](int i, int j) {
+      const Boundary &x = columns[i], &y = columns[j];
+      if (std::lexicographical_compare(x.c.begin(), x.c.begin() + x.size, y.c.begin(),
+                                       y.c.begin() + y.size))
+        return true;
+      if (std::lexicographical_compare(y.c.begin(), y.c.begin() + y.size, x.c.begin(),
+                                       x.c.begin() + x.size))
+        return false;
+      return i < j;
+    };
+    // next[l] is now where bucket l + 1 starts.
+    for (int l = 0, begin = 0; l < kc; begin = next[l++])
+      if (next[l] - begin > 1)
+        std::sort(by_low.begin() + begin, by_low.begin() + next[l], lexicographic);
+    order.swap(by_low);
+  }
   // A tetrahedron's four faces sum to a zero boundary, so the last of them to be reduced is a sum
   // of columns already seen: it would reduce to zero, and is skipped (the same pivots, far less
   // work where K_d is thick: most of such a column's additions are spent reaching zero).
