@@ -65,9 +65,8 @@ Annotation annotate(const SimplicialComplex& k, const Graph& g, bool need_annota
   std::vector<int> coords;
   for (int e = 0; e < m; ++e)
     if (!tree[e]) coords.push_back(e);
-  auto key = [&](int e) { return std::max(dist0[k.edges[e][0]], dist0[k.edges[e][1]]); };
   std::vector<double> key_of(m);
-  for (int e : coords) key_of[e] = key(e);
+  for (int e : coords) key_of[e] = std::max(dist0[k.edges[e][0]], dist0[k.edges[e][1]]);
   std::sort(coords.begin(), coords.end(),
             [&](int x, int y) { return key_of[x] != key_of[y] ? key_of[x] < key_of[y] : x < y; });
   std::vector<int> coord_of(m, -1);
@@ -251,11 +250,7 @@ std::vector<bool> bounds_in(const SimplicialComplex& larger,
     const auto& vs = cycles[c];
     for (std::size_t i = 0; i < vs.size(); ++i) {
       const int u = vs[i], w = vs[(i + 1) % vs.size()];
-      int edge = -1;
-      if (u >= 0 && u < g.n) {
-        for (int k = g.start[u]; k < g.start[u + 1]; ++k)
-          if (g.arcs[k].to == w) edge = g.arcs[k].edge;
-      }
+      const int edge = g.edge_between(u, w);
       if (edge < 0)
         throw std::invalid_argument("bounds_in: the cycle's edge " + std::to_string(u) + "-" +
                                     std::to_string(w) + " is not in the larger complex");
@@ -566,18 +561,21 @@ void regauge(const Graph& g, int W, const std::vector<int>& component, std::vect
   }
   Dijkstra dj(g, W);
   std::vector<Word> best_pa(size_t(g.n) * W, 0), pa(size_t(g.n) * W);
-  auto support_of = [&](const std::vector<int>& vs, const std::vector<Word>& p) {
-    int count = 0;
+  // Each edge of the vertices vs once, from its lower end: f(v, w, its annotation).
+  const auto for_each_edge = [&](const std::vector<int>& vs, auto&& f) {
     for (int v : vs)
-      for (int k = g.start[v]; k < g.start[v + 1]; ++k) {
-        const int w = g.arcs[k].to;
-        if (w < v) continue;
-        const Word* a = ann.data() + size_t(g.arcs[k].edge) * W;
-        bool zero = true;
-        for (int j = 0; j < W; ++j)
-          zero = zero && !(a[j] ^ p[size_t(v) * W + j] ^ p[size_t(w) * W + j]);
-        count += !zero;
-      }
+      for (int k = g.start[v]; k < g.start[v + 1]; ++k)
+        if (g.arcs[k].to > v) f(v, g.arcs[k].to, ann.data() + size_t(g.arcs[k].edge) * W);
+  };
+  // The edges whose annotation plus the coboundary of p is non-zero.
+  const auto support_of = [&](const std::vector<int>& vs, const std::vector<Word>& p) {
+    int count = 0;
+    for_each_edge(vs, [&](int v, int w, const Word* a) {
+      bool zero = true;
+      for (int j = 0; j < W; ++j)
+        zero = zero && !(a[j] ^ p[size_t(v) * W + j] ^ p[size_t(w) * W + j]);
+      count += !zero;
+    });
     return count;
   };
   for (const auto& vs : members) {
@@ -593,13 +591,10 @@ void regauge(const Graph& g, int W, const std::vector<int>& component, std::vect
       }
     }
   }
-  for (int v = 0; v < g.n; ++v)
-    for (int k = g.start[v]; k < g.start[v + 1]; ++k) {
-      const int w = g.arcs[k].to;
-      if (w < v) continue;
-      Word* a = ann.data() + size_t(g.arcs[k].edge) * W;
+  for (const auto& vs : members)
+    for_each_edge(vs, [&](int v, int w, Word* a) {
       for (int j = 0; j < W; ++j) a[j] ^= best_pa[size_t(v) * W + j] ^ best_pa[size_t(w) * W + j];
-    }
+    });
 }
 
 }  // namespace
@@ -643,10 +638,7 @@ HomologyBasis persistent_homology_basis(const SimplicialComplex& complex,
   std::vector<Word> ann(complex.edges.size() * W, 0);
   for (size_t e = 0; e < complex.edges.size(); ++e) {
     const int u = complex.edges[e][0], w = complex.edges[e][1];
-    int in_larger = -1;
-    if (u < gl->n)
-      for (int k = gl->start[u]; k < gl->start[u + 1]; ++k)
-        if (gl->arcs[k].to == w) in_larger = gl->arcs[k].edge;
+    const int in_larger = gl->edge_between(u, w);
     if (in_larger < 0)
       throw std::invalid_argument("persistent_homology_basis: the edge " + std::to_string(u) + "-" +
                                   std::to_string(w) + " is not in the larger complex");

@@ -35,6 +35,13 @@ struct Graph {
       arcs[fill[b]++] = {a, static_cast<int>(e), k.edge_length[e]};
     }
   }
+  /// The edge joining u and w, or -1 (also for a vertex outside the graph).
+  int edge_between(int u, int w) const {
+    if (u < 0 || u >= n) return -1;
+    for (int k = start[u]; k < start[u + 1]; ++k)
+      if (arcs[k].to == w) return arcs[k].edge;
+    return -1;
+  }
 };
 
 // Dijkstra with a radius bound and reusable buffers (an indexed 4-ary heap with decrease-key).

@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # Runs scenarios over seeds and prints one table row per scenario: verified clasps, the median
-# planning time and cycles of the verified runs, and the most common reason of the others (with
+# and the longest planning time and the median cycles of the verified runs, and the most common reason of the others (with
 # --controller-only: the controller reaching the goal, and the median steps).
 # The README's result tables come from this script.
 #
@@ -44,7 +44,7 @@ field() { sed -n "s/^  \"$1\": \(.*\),\{0,1\}$/\1/p" "$2" | sed 's/,$//' | head 
 median() { sort -g | awk '{a[NR]=$1} END {if (NR == 0) print "-"; else if (NR % 2) print a[(NR+1)/2]; else printf "%.3g\n", (a[NR/2]+a[NR/2+1])/2}'; }
 
 if [[ -n "$mode" ]]; then ok_key=success; count_key=steps; else ok_key=verified; count_key=cycles; fi
-printf '| scenario | %s | median s | median %s | other runs: main reason |\n|---|---|---|---|---|\n' \
+printf '| scenario | %s | median s | max s | median %s | other runs: main reason |\n|---|---|---|---|---|---|\n' \
   "$ok_key" "$count_key"
 for s in "$@"; do
   name=$(basename "$s" .yaml)
@@ -60,6 +60,9 @@ for s in "$@"; do
   done
   top=$(sort "$work/r" | uniq -c | sort -rn | head -1 | sed 's/^ *[0-9]* //')
   t=$(median <"$work/t")
+  longest=$(sort -g "$work/t" | tail -1)
   [[ "$t" == "-" ]] || t=$(printf '%.2f' "$t")
-  printf '| %s | %d/%d | %s | %s | %s |\n' "$name" "$ok" "$n" "$t" "$(median <"$work/c")" "${top:--}"
+  [[ -z "$longest" ]] && longest="-" || longest=$(printf '%.2f' "$longest")
+  printf '| %s | %d/%d | %s | %s | %s | %s |\n' "$name" "$ok" "$n" "$t" "$longest" \
+    "$(median <"$work/c")" "${top:--}"
 done
