@@ -170,6 +170,10 @@ struct CollisionWorld::Impl {
   // Per query: shapes' world transforms and boxes.
   std::vector<Eigen::Isometry3d> tf;
   std::vector<Box3> box;
+  // object_in_collision: the configuration every shape is placed at (empty: not placed since a
+  // query placed some), and the shape that touched the object last.
+  Eigen::VectorXd placed_q;
+  int last_hit = -1;
 
   bool self_enabled = true;
   bool hand_self_enabled = true;
@@ -233,6 +237,7 @@ struct CollisionWorld::Impl {
   }
 
   void place(const RobotData& d, int s) {
+    placed_q.resize(0);
     tf[s] = d.link_poses[shapes[s].link] * shapes[s].origin;
     box[s] = shapes[s].primitive.bounds(tf[s]);
   }
@@ -453,6 +458,26 @@ bool CollisionWorld::in_collision(const Eigen::VectorXd& q, CollisionReport* rep
   if (!q.allFinite()) throw std::invalid_argument(impl_->model.name + ": q is not finite");
   forward_kinematics(impl_->model, q, impl_->data);
   return impl_->check(impl_->data, report);
+}
+
+bool CollisionWorld::object_in_collision(const RobotData& data) {
+  Impl& m = *impl_;
+  m.check_data(data);
+  const int n = static_cast<int>(m.shapes.size());
+  if (m.placed_q.size() == 0 || m.placed_q != data.q) {
+    m.place_all(data);
+    m.placed_q = data.q;
+  }
+  const auto hits = [&](int s) {
+    return !m.static_link[m.shapes[s].link] && m.shape_hits_object(s);
+  };
+  if (m.last_hit >= 0 && hits(m.last_hit)) return true;
+  for (int s = 0; s < n; ++s)
+    if (s != m.last_hit && hits(s)) {
+      m.last_hit = s;
+      return true;
+    }
+  return false;
 }
 
 bool CollisionWorld::link_in_collision(const RobotData& data, int link, CollisionReport* report,

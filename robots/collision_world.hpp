@@ -106,6 +106,12 @@ class CollisionWorld {
   /// Runs FK at q first (q.size() == dof, finite).
   bool in_collision(const Eigen::VectorXd& q, CollisionReport* report = nullptr);
 
+  /// Does the robot touch the object (environment and self-collision not tested)? For many object
+  /// poses against one configuration, as in the secure-clasp check: the shapes are placed once
+  /// per configuration and the shape that touched last is tried first (the same answer as the
+  /// object part of in_collision, found sooner).
+  bool object_in_collision(const RobotData& data);
+
   /// Does `link` touch the object or the environment (and, with `include_self`, another link of
   /// the robot that self-collision would check against it)? Used to close fingers until contact.
   bool link_in_collision(const RobotData& data, int link, CollisionReport* report = nullptr,

@@ -238,7 +238,7 @@ void advance(Sequence& s, int end, robots::CollisionWorld& world, const robots::
              const detail::ClaspCheckContext& c, const SecureClaspOptions& o) {
   const auto collides = [&](const Eigen::Isometry3d& T) {
     world.set_object_pose(T);
-    return world.in_collision(data);
+    return world.object_in_collision(data);
   };
   for (; s.motions < end && s.escape_motion < 0; ++s.motions) {
     if (o.deadline && std::chrono::steady_clock::now() >= *o.deadline) {

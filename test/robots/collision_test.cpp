@@ -1,5 +1,6 @@
 // The collision world: boxes, meshes, self-collision, per-link queries and interpolated motions.
 #include <cmath>
+#include <random>
 #include <string>
 
 #include <gtest/gtest.h>
@@ -147,6 +148,40 @@ TEST(Collision, MeshObjectAndItsPose) {
   world.set_object_pose(ring_pose);
   EXPECT_TRUE(world.in_collision(m.home, &report));
   EXPECT_EQ(report.first, "thumb_3_link");
+}
+
+// The secure-clasp check's query: the object part of in_collision, at many object poses against a
+// few configurations, asked in an order that makes it reuse and then replace its placed shapes.
+TEST(Collision, ObjectQueryAgreesWithTheFullCheck) {
+  const RobotModel m = load_robot("kr5_sdh");
+  const test::TriMesh ring = test::torus_mesh(0.05, 0.008, 48, 16);
+  CollisionWorld full(m), object_only(m);
+  for (CollisionWorld* w : {&full, &object_only}) {
+    w->set_self_collision(false);
+    w->set_object(ring.vertices, ring.triangles);
+  }
+  std::mt19937_64 rng(3);
+  std::uniform_real_distribution<double> shift(-0.04, 0.04), close(0.0, 0.8);
+  int hits = 0, trials = 0;
+  for (int c = 0; c < 4; ++c) {
+    Eigen::VectorXd q = m.home;
+    for (int i = m.arm_dof; i < m.dof(); ++i) q[i] += close(rng);
+    RobotData data(m);
+    forward_kinematics(m, m.clamp(q), data);
+    for (int k = 0; k < 100; ++k, ++trials) {
+      Eigen::Isometry3d pose = at(0.75 + shift(rng), shift(rng), 0.85 + shift(rng));
+      pose.linear() = Eigen::AngleAxisd(M_PI / 2, Eigen::Vector3d::UnitY()).toRotationMatrix();
+      full.set_object_pose(pose);
+      object_only.set_object_pose(pose);
+      const bool expected = full.in_collision(data);
+      EXPECT_EQ(object_only.object_in_collision(data), expected) << c << " " << k;
+      hits += expected;
+      // A per-link query in between places some shapes anew: the next answer must not change.
+      if (k % 10 == 0) object_only.link_in_collision(data, static_cast<int>(m.links.size()) - 1);
+    }
+  }
+  EXPECT_GT(hits, trials / 10);
+  EXPECT_LT(hits, trials * 9 / 10);
 }
 
 TEST(Collision, ClosingFingersUntilContact) {
