@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # Runs scenarios over seeds and prints one table row per scenario: verified clasps, the median
-# and the longest planning time and the median cycles of the verified runs, and the most common reason of the others (with
-# --controller-only: the controller reaching the goal, and the median steps).
+# and the longest planning time and the median cycles of the verified runs, and the most common
+# reason of the others (with --controller-only: the controller reaching the goal, and the median
+# steps).
 # The README's result tables come from this script.
 #
 #   examples/scripts/sweep.sh [--seeds "1 2 3 4"] [--bin build/claspplan] [--jobs 2]
