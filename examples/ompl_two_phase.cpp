@@ -69,9 +69,7 @@ void ompl_two_phase(const tsrrt::ClaspScene& scene, tsrrt::ClaspResult& r,
 
   // Phase 1: the controller alone from sampled arm configurations (the hand as at the start).
   servo::ControllerRunOptions run;
-  run.goal_linking = scene.planning.closable_linking > 0
-                         ? std::min(scene.planning.closable_linking, scene.goal_linking)
-                         : scene.goal_linking;
+  run.goal_linking = tsrrt::closable_tolerance(scene.planning, scene.goal_linking);
   run.max_steps = o.controller_steps;
   run.collision_resolution = scene.planning.collision_resolution;
   std::vector<Goal> goals;

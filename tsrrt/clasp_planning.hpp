@@ -185,13 +185,14 @@ void crop_near_hand(const robots::RobotModel& model, const Eigen::VectorXd& q,
 struct ClaspPlanningOptions {
   PlannerParameters planner;
   bool sample_box_given = false;  ///< else the box is fitted around object and hand
-  /// What the closed hand must reach (mean |VLk|, eq. 4) before the secure-clasp check runs; 0:
+  /// The hand's virtual-linking goal (mean |VLk|, eq. 4): what the controller drives toward; 0:
   /// the hand's default goal.
   double goal_linking = 0.0;
   /// The tree's goal tolerance: a node at this mean |VLk| is a closable pose, where the fingers
   /// close until contact (paper Sec. V: 0.65 is the lowest threshold it uses for every hand). A
-  /// closed hand below goal_linking is refused without the (costly) secure-clasp check. 0: the
-  /// tree must reach goal_linking itself.
+  /// closed hand that no longer links at it (closed_hand_links: one of three or more fingers may
+  /// miss) is refused without the (costly) secure-clasp check. 0: the tree must reach
+  /// goal_linking itself.
   double closable_linking = 0.65;
   double position_tolerance = 0.0;     ///< metres; 0: virtual linking only (as in the paper)
   double collision_resolution = 0.02;  ///< rad between checked configurations

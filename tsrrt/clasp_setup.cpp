@@ -1,6 +1,8 @@
 #include "tsrrt/clasp_setup.hpp"
 
+#include <algorithm>
 #include <chrono>
+#include <numeric>
 #include <stdexcept>
 #include <utility>
 
@@ -78,9 +80,7 @@ void run_search(const ClaspScene& scene, const Say& say, ClaspResult& r) {
     return check.secure || !planning.verify_in_search;
   };
   // The tree stops at a closable pose; finger closing does the rest (paper Sec. V).
-  const double tolerance = planning.closable_linking > 0
-                               ? std::min(planning.closable_linking, scene.goal_linking)
-                               : scene.goal_linking;
+  const double tolerance = closable_tolerance(planning, scene.goal_linking);
   ClaspProblem problem(scene.controller, scene.world, tolerance, planning.position_tolerance,
                        planning.collision_resolution, close_and_verify);
   std::vector<TaskPoint> goals;
@@ -215,15 +215,34 @@ ClaspResult plan_clasp(const ClaspRequest& request) {
   return r;
 }
 
+double closable_tolerance(const ClaspPlanningOptions& planning, double goal_linking) {
+  return planning.closable_linking > 0 ? std::min(planning.closable_linking, goal_linking)
+                                       : goal_linking;
+}
+
+bool closed_hand_links(const std::vector<double>& finger_linking, double threshold) {
+  const std::size_t n = finger_linking.size();
+  if (n == 0) return false;
+  // Summed in curve order, as eq. 4's task feature does: the same mean to the last bit.
+  const double sum = std::accumulate(finger_linking.begin(), finger_linking.end(), 0.0);
+  if (sum / static_cast<double>(n) >= threshold) return true;
+  const double lowest = *std::min_element(finger_linking.begin(), finger_linking.end());
+  return n >= 3 && (sum - lowest) / static_cast<double>(n - 1) >= threshold;
+}
+
 ClaspCandidate close_and_check(const ClaspScene& scene, const Eigen::VectorXd& q_open,
                                ClaspTimings& timings, bool refuse_below_goal) {
   ClaspCandidate c;
   auto t = Clock::now();
   c.q_closed = close_fingers(scene.robot, scene.world, q_open, scene.planning.closing);
   timings.closing += since(t);
-  // A closable pose whose closed hand stays below the goal is no clasp: refused at once.
-  c.closed_linking = scene.controller.project(c.q_closed).linking;
-  c.refused = refuse_below_goal && c.closed_linking < scene.goal_linking;
+  // A closed hand that falls below the goal region the tree stopped in is no clasp: refused at
+  // once.
+  const servo::TaskState closed = scene.controller.project(c.q_closed);
+  c.closed_linking = closed.linking;
+  c.refused = refuse_below_goal &&
+              !closed_hand_links(closed.finger_linking,
+                                 closable_tolerance(scene.planning, scene.goal_linking));
   if (c.refused) return c;
   t = Clock::now();
   c.check = scene.checker.check(c.q_closed, scene.loop.points, &c.screened_out);

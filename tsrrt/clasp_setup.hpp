@@ -59,22 +59,33 @@ struct ClaspScene {
   servo::ClaspController& controller;  ///< bound to the loop and its clasp targets
   SecureClaspChecker& checker;         ///< the secure-clasp check of this object
   const perception::Loop& loop;
-  double goal_linking;                   ///< what the closed hand must reach (mean |VLk|)
+  double goal_linking;                   ///< the hand's virtual-linking goal (mean |VLk|)
   const ClaspPlanningOptions& planning;  ///< closing, check, seed and limits
 };
 
+/// The tree's goal tolerance (mean |VLk|): closable_linking, at most the goal; the goal itself
+/// when closable_linking is 0.
+double closable_tolerance(const ClaspPlanningOptions& planning, double goal_linking);
+
+/// Does a closed hand still link the loop, by its finger curves' |VLk|? When their mean (eq. 4)
+/// reaches `threshold`, or, with three curves or more, when the mean of all but the lowest does:
+/// one finger may miss a hole narrower than the hand, and the secure-clasp check decides (the
+/// paper's goal tolerance ranges from a hand's goal down to 0.65 with the object's shape, Sec. V).
+bool closed_hand_links(const std::vector<double>& finger_linking, double threshold);
+
 /// A clasp candidate: the fingers closed at an open pose, and the secure-clasp check of the
-/// closed hand unless it was refused before (its virtual linking below the scene's goal).
+/// closed hand unless it was refused before (closed_hand_links() false at the tree's tolerance).
 struct ClaspCandidate {
   Eigen::VectorXd q_closed;
   double closed_linking = 0.0;  ///< mean |VLk| of the closed hand (eq. 4)
-  bool refused = false;         ///< below the goal linking: no check ran
+  bool refused = false;         ///< below the tree's tolerance: no check ran
   bool screened_out = false;    ///< the check's screening (its first motions) found an escape
   SecureClaspReport check;
 };
 
 /// Closes the fingers at q_open (close_fingers with the scene's options); refuses a closed hand
-/// below scene.goal_linking when `refuse_below_goal`, else runs scene.checker. Adds the seconds to
+/// that no longer links at the tree's tolerance (closed_hand_links, closable_tolerance) when
+/// `refuse_below_goal`, else runs scene.checker. Adds the seconds to
 /// timings.closing and timings.verification.
 ClaspCandidate close_and_check(const ClaspScene& scene, const Eigen::VectorXd& q_open,
                                ClaspTimings& timings, bool refuse_below_goal = true);
@@ -145,7 +156,7 @@ struct ClaspStatistics {
   int nodes = 0;
   int control_steps = 0;     ///< controller steps of the search (kControllerOnly: of the run)
   int clasp_candidates = 0;  ///< goal nodes closed (and verified unless screened)
-  int clasp_candidates_screened = 0;  ///< closed hands below the goal linking, refused unverified
+  int clasp_candidates_screened = 0;  ///< closed hands refused unverified (closed_hand_links)
   ConnectOutcomes connect_outcomes;
   int unpruned_waypoints = 0;  ///< of the found path, before pruning
   /// The tree, for pictures: each node's task point and parent, and the solution's nodes.

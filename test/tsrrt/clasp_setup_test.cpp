@@ -136,6 +136,23 @@ TEST(ClaspSetup, NoLoopReasonCountsTheLoopsThatFilledIn) {
   EXPECT_EQ(tsrrt::no_loop_reason(m).find("fill in"), std::string::npos);
 }
 
+// A closed hand is checked when its fingers keep the tree's tolerance: all of them on average,
+// or all but one for a hand of three fingers or more.
+TEST(ClaspSetup, ClosedHandLinksWhenAllButOneFingerDo) {
+  EXPECT_TRUE(tsrrt::closed_hand_links({0.7, 0.66}, 0.65));
+  EXPECT_FALSE(tsrrt::closed_hand_links({0.9, 0.0}, 0.65));  // two curves: none may miss
+  EXPECT_TRUE(tsrrt::closed_hand_links({0.74, 0.79, 0.85, 0.0}, 0.65));  // one finger missed
+  EXPECT_FALSE(tsrrt::closed_hand_links({0.74, 0.79, 0.85, 0.0}, 0.8));
+  EXPECT_FALSE(tsrrt::closed_hand_links({0.9, 0.9, 0.0, 0.0}, 0.65));  // two missed
+  EXPECT_FALSE(tsrrt::closed_hand_links({}, 0.65));
+
+  tsrrt::ClaspPlanningOptions o;
+  EXPECT_DOUBLE_EQ(tsrrt::closable_tolerance(o, 0.85), 0.65);
+  EXPECT_DOUBLE_EQ(tsrrt::closable_tolerance(o, 0.6), 0.6);  // never above the goal
+  o.closable_linking = 0.0;
+  EXPECT_DOUBLE_EQ(tsrrt::closable_tolerance(o, 0.85), 0.85);
+}
+
 TEST(ClaspSetup, MalformedRequestsThrow) {
   tsrrt::ClaspRequest no_robot = request_for(purse());
   no_robot.robot = nullptr;
