@@ -231,7 +231,7 @@ bool closed_hand_links(const std::vector<double>& finger_linking, double thresho
 }
 
 ClaspCandidate close_and_check(const ClaspScene& scene, const Eigen::VectorXd& q_open,
-                               ClaspTimings& timings, bool refuse_below_goal) {
+                               ClaspTimings& timings, bool refuse_unlinked) {
   ClaspCandidate c;
   auto t = Clock::now();
   c.q_closed = close_fingers(scene.robot, scene.world, q_open, scene.planning.closing);
@@ -240,9 +240,9 @@ ClaspCandidate close_and_check(const ClaspScene& scene, const Eigen::VectorXd& q
   // once.
   const servo::TaskState closed = scene.controller.project(c.q_closed);
   c.closed_linking = closed.linking;
-  c.refused = refuse_below_goal &&
-              !closed_hand_links(closed.finger_linking,
-                                 closable_tolerance(scene.planning, scene.goal_linking));
+  c.refused =
+      refuse_unlinked && !closed_hand_links(closed.finger_linking,
+                                            closable_tolerance(scene.planning, scene.goal_linking));
   if (c.refused) return c;
   t = Clock::now();
   c.check = scene.checker.check(c.q_closed, scene.loop.points, &c.screened_out);

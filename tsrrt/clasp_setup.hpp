@@ -83,12 +83,12 @@ struct ClaspCandidate {
   SecureClaspReport check;
 };
 
-/// Closes the fingers at q_open (close_fingers with the scene's options); refuses a closed hand
-/// that no longer links at the tree's tolerance (closed_hand_links, closable_tolerance) when
-/// `refuse_below_goal`, else runs scene.checker. Adds the seconds to
-/// timings.closing and timings.verification.
+/// Closes the fingers at q_open (close_fingers with the scene's options); with `refuse_unlinked`,
+/// refuses a closed hand that no longer links at the tree's tolerance (closed_hand_links,
+/// closable_tolerance), else runs scene.checker. Adds the seconds to timings.closing and
+/// timings.verification.
 ClaspCandidate close_and_check(const ClaspScene& scene, const Eigen::VectorXd& q_open,
-                               ClaspTimings& timings, bool refuse_below_goal = true);
+                               ClaspTimings& timings, bool refuse_unlinked = true);
 
 /// A search in place of TS-RRT: from result.start, fills result.motion.waypoints (start to the
 /// closed hand), success, verified, reason, verification, statistics, and timings.closing and
