@@ -282,10 +282,11 @@ void assess(Loop& loop, const PointIndex& index, const Eigen::AlignedBox3d& boun
   // With a hand, the narrowest hole is its fingers' (min_hole is for an unknown hand).
   const bool hand = options.finger_thickness > 0;
   const double min_hole = hand ? options.finger_thickness + kFingerClearance : options.min_hole;
-  if (loop.hole_width < min_hole) {
+  const double needed = hand ? min_hole + kHoleWidthExcess : min_hole;
+  if (loop.hole_width < needed) {
     loop.verdict = hand ? "hand_too_large" : "too_narrow";
     loop.reason = hand ? "too narrow for this hand: hole " + metres(loop.hole_width) +
-                             " wide < fingers " + metres(options.finger_thickness) + " + 1 cm"
+                             " wide < fingers " + metres(options.finger_thickness) + " + 1.3 cm"
                        : "too narrow: hole " + metres(loop.hole_width) + " wide < min-hole " +
                              metres(options.min_hole);
     return;
@@ -398,18 +399,18 @@ void assess(Loop& loop, const PointIndex& index, const Eigen::AlignedBox3d& boun
   }
   // The closed hand around the bar.
   measure_bar(loop, index, views, options);
-  if (options.closed_aperture > 0 && !(loop.bar_thickness <= options.closed_aperture)) {
+  if (options.closed_aperture > 0 && !(loop.bar_thickness <= widest_bar(options.closed_aperture))) {
     loop.verdict = "bar_too_thick";
     loop.reason = "bar too thick for this hand: the thinnest material along the loop is " +
                   (std::isfinite(loop.bar_thickness) ? metres(loop.bar_thickness)
                                                      : std::string("a wall or body")) +
-                  " across > the closed hand's " + metres(options.closed_aperture);
+                  " across > the closed hand's " + metres(options.closed_aperture) + " less 1 cm";
     return;
   }
   loop.claspable = true;
   loop.verdict = "claspable";
   loop.reason = "claspable: open hole " + metres(loop.hole_width) + " wide (" +
-                (hand ? "fingers need " : "min-hole ") + metres(min_hole) + ")" +
+                (hand ? "fingers need " : "min-hole ") + metres(needed) + ")" +
                 (views.empty() ? "" : ", seen through") +
                 (tilt > 0 ? ", passable " + std::to_string(tilt) + " degrees from its axis" : "");
   if (hand || options.closed_aperture > 0) {

@@ -137,20 +137,29 @@ TEST(LoopChoice, MorePointsNeverMeanMoreLoops) {
   EXPECT_LE(loops[2], loops[0]);
 }
 
-TEST(LoopChoice, LoopsRobotRefusesAHoleNarrowerThanTheFingers) {
-  TempDir dir;
-  // A ring whose hole (30 mm) admits the iCub's fingers (14 mm) but not the SDH's (29 mm + 5).
+// A torus (centre-line radius R, tube radius r) standing upright in front of the robot, its hole
+// facing x, written as an OBJ file in `dir`.
+std::string upright_ring(TempDir& dir, double R, double r) {
   Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();
   pose.translate(Eigen::Vector3d(0.55, 0, 0.2));
   pose.rotate(Eigen::AngleAxisd(M_PI / 2, Eigen::Vector3d::UnitY()));
   const std::string mesh = dir.file("ring.obj");
-  perception::write_obj(objects::torus_mesh(0.021, 0.006, pose), mesh);
-  const auto loops = [&](const std::string& robot) {
-    const CliResult r = run_cli({"loops", mesh, "--robot", robot, "--json"});
-    EXPECT_EQ(r.exit_code, 0) << r.err;
-    return nlohmann::json::parse(r.out);
-  };
-  const auto sdh = loops("kr5_sdh");
+  perception::write_obj(objects::torus_mesh(R, r, pose), mesh);
+  return mesh;
+}
+
+// `claspplan loops MESH --robot ROBOT --json`.
+nlohmann::json loops_for(const std::string& mesh, const std::string& robot) {
+  const CliResult r = run_cli({"loops", mesh, "--robot", robot, "--json"});
+  EXPECT_EQ(r.exit_code, 0) << r.err;
+  return nlohmann::json::parse(r.out);  // throws (a test failure) when there is no JSON
+}
+
+TEST(LoopChoice, LoopsRobotRefusesAHoleNarrowerThanTheFingers) {
+  TempDir dir;
+  // A ring whose hole (30 mm) admits the iCub's fingers (14 mm + 13) but not the SDH's (29 mm).
+  const std::string mesh = upright_ring(dir, 0.021, 0.006);
+  const auto sdh = loops_for(mesh, "kr5_sdh");
   bool refused = false;
   for (const auto& l : sdh["loops"]) {
     if (l["verdict"] == "hand_too_large") {
@@ -162,9 +171,45 @@ TEST(LoopChoice, LoopsRobotRefusesAHoleNarrowerThanTheFingers) {
   EXPECT_TRUE(refused);
   EXPECT_NEAR(sdh["hand"]["finger_thickness"].get<double>(), 0.029, 1e-6);
   bool icub_claspable = false;
-  const auto icub = loops("kr5_icub");
+  const auto icub = loops_for(mesh, "kr5_icub");
   for (const auto& l : icub["loops"]) icub_claspable |= l["claspable"].get<bool>();
   EXPECT_TRUE(icub_claspable);
+}
+
+TEST(LoopChoice, LoopsRobotWantsRoomBesideTheFingers) {
+  TempDir dir;
+  // A ring with a 26 mm hole: 12 mm wider than the iCub's fingers, short of the 13 mm it needs.
+  const std::string mesh = upright_ring(dir, 0.019, 0.006);
+  const auto icub = loops_for(mesh, "kr5_icub");
+  ASSERT_FALSE(icub["loops"].empty());
+  for (const auto& l : icub["loops"]) EXPECT_FALSE(l["claspable"].get<bool>()) << l["reason"];
+  const auto& ring = icub["loops"][0];
+  EXPECT_EQ(ring["verdict"], "hand_too_large");
+  EXPECT_GT(ring["hole_width"].get<double>(), 0.014 + 0.010);  // the old margin let it through
+  EXPECT_NE(ring["reason"].get<std::string>().find("+ 1.3 cm"), std::string::npos)
+      << ring["reason"];
+}
+
+TEST(LoopChoice, LoopsRobotWantsRoomAroundTheBar) {
+  TempDir dir;
+  // A ring of a 4.7 cm thick bar: inside the iCub's closed aperture (5.3 cm) but not 1 cm inside
+  // it; well inside the DLR hand's (10.8 cm).
+  const std::string mesh = upright_ring(dir, 0.05, 0.0235);
+  // The surface's other loop, around the tube, is a tube wall for every hand.
+  const auto around_hole = [&](const std::string& robot) {
+    const auto j = loops_for(mesh, robot);
+    for (const auto& l : j["loops"])
+      if (l["verdict"] != "tube_wall") return l;
+    return nlohmann::json();
+  };
+  const auto icub = around_hole("kr5_icub");
+  ASSERT_FALSE(icub.is_null());
+  EXPECT_EQ(icub["verdict"], "bar_too_thick") << icub["reason"];
+  EXPECT_LT(icub["bar_thickness"].get<double>(), 0.0529);  // the old rule let it through
+  EXPECT_NE(icub["reason"].get<std::string>().find("less 1 cm"), std::string::npos);
+  const auto dlr = around_hole("kr5_dlr");
+  ASSERT_FALSE(dlr.is_null());
+  EXPECT_TRUE(dlr["claspable"].get<bool>()) << dlr["reason"];
 }
 
 }  // namespace
