@@ -20,6 +20,13 @@ std::string metres(double v) {
   return buf;
 }
 
+// A margin in reasons, from its constant: 0.013 -> "1.3 cm", 0.01 -> "1 cm".
+std::string centimetres(double v) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%g cm", std::round(1000.0 * v) / 10.0);
+  return buf;
+}
+
 // Even-odd point-in-polygon test in the plane.
 bool inside(const std::vector<Eigen::Vector2d>& poly, const Eigen::Vector2d& q) {
   bool in = false;
@@ -286,7 +293,8 @@ void assess(Loop& loop, const PointIndex& index, const Eigen::AlignedBox3d& boun
   if (loop.hole_width < needed) {
     loop.verdict = hand ? "hand_too_large" : "too_narrow";
     loop.reason = hand ? "too narrow for this hand: hole " + metres(loop.hole_width) +
-                             " wide < fingers " + metres(options.finger_thickness) + " + 1.3 cm"
+                             " wide < fingers " + metres(options.finger_thickness) + " + " +
+                             centimetres(kFingerClearance + kHoleWidthExcess)
                        : "too narrow: hole " + metres(loop.hole_width) + " wide < min-hole " +
                              metres(options.min_hole);
     return;
@@ -404,7 +412,8 @@ void assess(Loop& loop, const PointIndex& index, const Eigen::AlignedBox3d& boun
     loop.reason = "bar too thick for this hand: the thinnest material along the loop is " +
                   (std::isfinite(loop.bar_thickness) ? metres(loop.bar_thickness)
                                                      : std::string("a wall or body")) +
-                  " across > the closed hand's " + metres(options.closed_aperture) + " less 1 cm";
+                  " across > the closed hand's " + metres(options.closed_aperture) + " less " +
+                  centimetres(kFingerClearance);
     return;
   }
   loop.claspable = true;

@@ -83,7 +83,9 @@ constexpr double kHoleWidthExcess = 0.003;
 /// when the fingers reach the goal, and they close no further: the iCub (5.3 cm) reached a wheel
 /// valve's 4.5-4.7 cm rim at VLk 0.72-0.75 but its closed fingers linked the loop by 0.09-0.15
 /// only, and the valve got free at every seed; the widest bar verified on the paper's objects is
-/// 59% of the hand's aperture (2 cm to spare).
+/// 59% of the hand's aperture (2 cm to spare). This decides whether a loop is worth trying; clasp
+/// targets still cover every part whose bar is inside the aperture itself (clasp_targets'
+/// max_bar), where the clasp check decides.
 inline double widest_bar(double closed_aperture) {
   return closed_aperture > 0 ? std::max(0.0, closed_aperture - kFingerClearance) : 0.0;
 }
