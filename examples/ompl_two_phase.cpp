@@ -44,7 +44,9 @@ class SeededRRTConnect : public og::RRTConnect {
 };
 
 struct Goal {
-  Eigen::VectorXd q_open, q_closed;
+  Eigen::VectorXd q_open;
+  std::vector<Eigen::VectorXd> approach;  // to contact, before closing (may be empty)
+  Eigen::VectorXd q_closed;
   int target = -1;
   tsrrt::SecureClaspReport check;
 };
@@ -92,7 +94,7 @@ void ompl_two_phase(const tsrrt::ClaspScene& scene, tsrrt::ClaspResult& r,
     if (c.refused) continue;
     last_check = c.check;
     if (c.check.secure)
-      goals.push_back({reach.waypoints.back(), c.q_closed, reach.target, c.check});
+      goals.push_back({reach.waypoints.back(), c.approach, c.q_closed, reach.target, c.check});
   }
   r.statistics.clasp_candidates = candidates;
   r.statistics.cycles = starts;
@@ -162,6 +164,7 @@ void ompl_two_phase(const tsrrt::ClaspScene& scene, tsrrt::ClaspResult& r,
         (goals[best].q_open - r.motion.waypoints.back()).norm())
       best = i;
   }
+  for (const auto& q : goals[best].approach) r.motion.waypoints.push_back(q);
   r.motion.waypoints.push_back(goals[best].q_closed);
   r.verification = goals[best].check;
   r.motion.target = goals[best].target;

@@ -12,7 +12,8 @@ const cv::Scalar kArm(60, 140, 230);  // BGR: orange
 const cv::Scalar kHand(150, 150, 150);
 const cv::Scalar kObject(170, 200, 120);
 const cv::Scalar kBox(200, 190, 180);
-const cv::Scalar kLoop(30, 30, 220);  // red
+const cv::Scalar kLoop(30, 30, 220);        // red
+const cv::Scalar kStartLoop(220, 120, 40);  // blue
 
 RenderMesh shape_mesh(const robots::CollisionShape& s) {
   using Type = robots::CollisionShape::Type;
@@ -81,6 +82,29 @@ void write_clasp_views(const SceneGeometry& scene, const Eigen::VectorXd& q,
     image.draw_label("final clasp (" + scene.model.name + "), loop in red; arm not drawn");
     image.save(dir + "/" + name);
   }
+}
+
+void write_escape_view(const SceneGeometry& scene, const Eigen::VectorXd& q,
+                       const Eigen::Isometry3d& escape, const std::string& file) {
+  std::vector<Eigen::Vector3d> moved;
+  for (const auto& p : scene.loop) moved.push_back(escape * p);
+  std::vector<Eigen::Vector3d> frame = hand_points(scene.model, q);
+  frame.insert(frame.end(), moved.begin(), moved.end());
+  robots::RobotData data(scene.model);
+  robots::forward_kinematics(scene.model, q, data);
+  // Seen across the closing plane, as clasp_side.png.
+  const Eigen::Vector3d forward = robots::vector_direction(data, scene.model.v_fwd);
+  const Eigen::Vector3d sideways = robots::vector_direction(data, scene.model.v_swd);
+  SceneImage image(framing_view(frame, forward.cross(sideways) - 0.35 * forward + 0.3 * sideways));
+  image.draw_mesh(scene.object, escape.matrix(), kObject);
+  for (const auto& shape : scene.model.shapes)
+    if (scene.model.links[shape.link].hand)
+      image.draw_mesh(shape_mesh(shape), robots::shape_pose(data, shape).matrix(), kHand);
+  image.draw_polyline(scene.loop, true, kStartLoop, 2);
+  image.draw_polyline(moved, true, kLoop, 3);
+  image.draw_label("escape: the object got free of the closed hand (" + scene.model.name +
+                   "); its loop in red, where it started in blue");
+  image.save(file);
 }
 
 void write_tree_picture(const SceneGeometry& scene, const Eigen::VectorXd& q_start,

@@ -7,6 +7,7 @@
 #include <vector>
 
 #include <Eigen/Core>
+#include <Eigen/Geometry>
 
 #include "examples/scenario.hpp"
 #include "examples/scene_render.hpp"
@@ -31,6 +32,11 @@ void draw_scene(SceneImage& image, const SceneGeometry& scene, const Eigen::Vect
 /// tangent and across the closing plane (both square to the approach, so the arm is not between).
 void write_clasp_views(const SceneGeometry& scene, const Eigen::VectorXd& q,
                        const std::string& dir);
+
+/// escape.png: how a clasp failed its check. The closed hand, the object where the first escaping
+/// sequence left it (its loop in red) and the loop where it started (blue).
+void write_escape_view(const SceneGeometry& scene, const Eigen::VectorXd& q,
+                       const Eigen::Isometry3d& escape, const std::string& file);
 
 /// The search tree's grasp-centre points (red), the solution's nodes (blue) and the pruned path's
 /// hand centres (green), over the start pose.

@@ -240,6 +240,9 @@ RunOutcome run_scenario(const Scenario& scenario, const RunOptions& options) {
   if (options.pictures) {
     const auto tp = Clock::now();
     write_clasp_views(scene, r.motion.final_q, options.out_dir);
+    if (r.verification.escape)
+      write_escape_view(scene, r.motion.final_q, *r.verification.escape,
+                        options.out_dir + "/escape.png");
     write_path_poses(scene, path, options.out_dir + "/poses.png");
     timing["pictures"] = since(tp);
   }
@@ -247,15 +250,21 @@ RunOutcome run_scenario(const Scenario& scenario, const RunOptions& options) {
 }
 
 json verification_json(const tsrrt::SecureClaspReport& v) {
-  return {{"secure", v.secure},
-          {"start_in_collision", v.start_in_collision},
-          {"timed_out", v.timed_out},
-          {"sequences", v.sequences},
-          {"escaped_sequences", v.escaped_sequences},
-          {"min_open_linking", v.min_open_linking},
-          {"max_open_linking", v.max_open_linking},
-          {"min_virtual_linking", v.min_virtual_linking},
-          {"max_virtual_linking", v.max_virtual_linking}};
+  json j = {{"secure", v.secure},
+            {"start_in_collision", v.start_in_collision},
+            {"timed_out", v.timed_out},
+            {"sequences", v.sequences},
+            {"escaped_sequences", v.escaped_sequences},
+            {"min_open_linking", v.min_open_linking},
+            {"max_open_linking", v.max_open_linking},
+            {"min_virtual_linking", v.min_virtual_linking},
+            {"max_virtual_linking", v.max_virtual_linking}};
+  if (v.escape) {  // the first escaping sequence's motion of the object, relative to the hand
+    const Eigen::Vector3d t = v.escape->translation();
+    j["escape"] = {{"translation", {t.x(), t.y(), t.z()}},
+                   {"rotation", Eigen::AngleAxisd(v.escape->linear()).angle()}};
+  }
+  return j;
 }
 
 void print_run_summary(const json& s, bool controller_only) {

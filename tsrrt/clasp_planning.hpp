@@ -11,6 +11,7 @@
 #include <vector>
 
 #include <Eigen/Core>
+#include <Eigen/Geometry>
 
 #include "robots/collision_world.hpp"
 #include "servo/clasp_controller.hpp"
@@ -86,6 +87,21 @@ struct FingerClosingOptions {
 Eigen::VectorXd close_fingers(const robots::RobotModel& model, robots::CollisionWorld& world,
                               const Eigen::VectorXd& q, const FingerClosingOptions& options);
 
+struct ApproachOptions {
+  double step = 0.004;     ///< m per step along the approach direction
+  double distance = 0.05;  ///< the longest advance (m); 0: none
+};
+
+/// The open hand moved straight along its approach direction (v_fwd) by the arm alone, the tool's
+/// orientation kept, until the next step would touch anything (object, environment, itself),
+/// leave the joint limits or lose the line, or `distance` is covered: the approach to contact
+/// that precedes a grasp, so that the fingers close around the bar from deep rather than hook it
+/// with their tips. Returns the poses after q, each collision-free (empty: no step was free).
+std::vector<Eigen::VectorXd> approach_until_contact(const robots::RobotModel& model,
+                                                    robots::CollisionWorld& world,
+                                                    const Eigen::VectorXd& q,
+                                                    const ApproachOptions& options);
+
 struct SecureClaspOptions {
   int sequences = 10;               ///< paper Sec. V-A: 10 sequences ...
   int motions = 500;                ///< ... of 500 random translations and rotations
@@ -118,6 +134,9 @@ struct SecureClaspReport {
   int sequences = 0;
   int escaped_sequences = 0;
   int escape_motion = -1;  ///< the first escaping motion's index in its sequence, or -1
+  /// Where the object got free: its motion relative to the closed hand in the first escaping
+  /// sequence (in sequence order), at the end of its escaping motion.
+  std::optional<Eigen::Isometry3d> escape;
   /// At the final pose (paper Fig. 6): |Lk| of each open finger curve with the loop, and VLk.
   std::vector<double> open_linking;
   std::vector<double> virtual_linking;
@@ -197,6 +216,9 @@ struct ClaspPlanningOptions {
   double position_tolerance = 0.0;     ///< metres; 0: virtual linking only (as in the paper)
   double collision_resolution = 0.02;  ///< rad between checked configurations
   FingerClosingOptions closing;
+  /// When the fingers closed where the tree stopped give no secure clasp, the open hand advances
+  /// to contact along its approach direction and closes again (approach_until_contact).
+  ApproachOptions approach;
   int prune_attempts = 100;
   SecureClaspOptions secure;
   /// Verify each goal node as it is found and go on searching when the clasp is not secure;

@@ -64,6 +64,10 @@ void run_search(const ClaspScene& scene, const Say& say, ClaspResult& r) {
           " only; refused");
       return false;
     }
+    if (!last.approach.empty())
+      say("  clasp candidate " + std::to_string(candidates) +
+          ": closed again after the open hand approached to contact (" +
+          std::to_string(last.approach.size()) + " steps)");
     say("  clasp candidate " + std::to_string(candidates) + ": fingers closed; verified with " +
         std::to_string(planning.secure.sequences) + " x " +
         std::to_string(planning.secure.motions) + " random motions of the object");
@@ -110,6 +114,7 @@ void run_search(const ClaspScene& scene, const Say& say, ClaspResult& r) {
   const auto t = Clock::now();
   r.motion.waypoints = prune_path(problem, std::move(plan.path), planning.prune_attempts, pp.seed);
   r.timings.pruning = since(t);
+  for (const auto& q : last.approach) r.motion.waypoints.push_back(q);
   if (last.q_closed != r.motion.waypoints.back()) r.motion.waypoints.push_back(last.q_closed);
   r.success = r.verified = check.secure;
   r.reason = check.secure ? "verified clasp"
@@ -230,8 +235,11 @@ bool closed_hand_links(const std::vector<double>& finger_linking, double thresho
   return n >= 3 && (sum - lowest) / static_cast<double>(n - 1) >= threshold;
 }
 
-ClaspCandidate close_and_check(const ClaspScene& scene, const Eigen::VectorXd& q_open,
-                               ClaspTimings& timings, bool refuse_unlinked) {
+namespace {
+
+// close_and_check at one open pose.
+ClaspCandidate close_and_check_at(const ClaspScene& scene, const Eigen::VectorXd& q_open,
+                                  ClaspTimings& timings, bool refuse_unlinked) {
   ClaspCandidate c;
   auto t = Clock::now();
   c.q_closed = close_fingers(scene.robot, scene.world, q_open, scene.planning.closing);
@@ -248,6 +256,23 @@ ClaspCandidate close_and_check(const ClaspScene& scene, const Eigen::VectorXd& q
   c.check = scene.checker.check(c.q_closed, scene.loop.points, &c.screened_out);
   timings.verification += since(t);
   return c;
+}
+
+}  // namespace
+
+ClaspCandidate close_and_check(const ClaspScene& scene, const Eigen::VectorXd& q_open,
+                               ClaspTimings& timings, bool refuse_unlinked) {
+  ClaspCandidate first = close_and_check_at(scene, q_open, timings, refuse_unlinked);
+  if (first.check.secure || first.check.timed_out) return first;
+  const auto t = Clock::now();
+  std::vector<Eigen::VectorXd> approach =
+      approach_until_contact(scene.robot, scene.world, q_open, scene.planning.approach);
+  timings.closing += since(t);
+  if (approach.empty()) return first;
+  ClaspCandidate deeper = close_and_check_at(scene, approach.back(), timings, refuse_unlinked);
+  if (!deeper.check.secure) return first;
+  deeper.approach = std::move(approach);
+  return deeper;
 }
 
 robots::CollisionWorld make_collision_world(const robots::RobotModel& robot,

@@ -76,6 +76,9 @@ bool closed_hand_links(const std::vector<double>& finger_linking, double thresho
 /// A clasp candidate: the fingers closed at an open pose, and the secure-clasp check of the
 /// closed hand unless it was refused before (closed_hand_links() false at the tree's tolerance).
 struct ClaspCandidate {
+  /// The open hand's straight approach to contact after the open pose, when the fingers closed
+  /// at its end (empty: closed where the tree stopped). The motion is approach, then q_closed.
+  std::vector<Eigen::VectorXd> approach;
   Eigen::VectorXd q_closed;
   double closed_linking = 0.0;  ///< mean |VLk| of the closed hand (eq. 4)
   bool refused = false;         ///< below the tree's tolerance: no check ran
@@ -85,7 +88,9 @@ struct ClaspCandidate {
 
 /// Closes the fingers at q_open (close_fingers with the scene's options); with `refuse_unlinked`,
 /// refuses a closed hand that no longer links at the tree's tolerance (closed_hand_links,
-/// closable_tolerance), else runs scene.checker. Adds the seconds to timings.closing and
+/// closable_tolerance), else runs scene.checker. When that gives no secure clasp, the open hand
+/// approaches to contact (approach_until_contact) and the same follows there; the first secure
+/// clasp of the two is returned, else the first attempt. Adds the seconds to timings.closing and
 /// timings.verification.
 ClaspCandidate close_and_check(const ClaspScene& scene, const Eigen::VectorXd& q_open,
                                ClaspTimings& timings, bool refuse_unlinked = true);

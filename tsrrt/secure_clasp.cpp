@@ -322,6 +322,7 @@ SecureClaspReport run_check(const robots::RobotModel& model,
       if (s.escape_motion < 0) continue;
       ++report.escaped_sequences;
       if (report.escape_motion < 0) report.escape_motion = s.escape_motion;
+      if (!report.escape) report.escape = s.T;
     }
     stop = end >= o.motions || report.escaped_sequences > 0 || report.timed_out;
   }

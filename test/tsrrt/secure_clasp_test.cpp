@@ -6,6 +6,7 @@
 
 #include "test/support/purse_request.hpp"
 #include "test/support/reference_secure_clasp.hpp"
+#include "tsrrt/secure_clasp_detail.hpp"
 
 namespace claspplan::test {
 namespace {
@@ -40,8 +41,8 @@ std::vector<Pose> plan_poses() {
     const tsrrt::ClaspResult r = tsrrt::plan_clasp(request);
     EXPECT_TRUE(r.verified) << robot << ": " << r.reason;
     if (!r.verified) continue;
-    for (double open :
-         {0.0, 0.025, 0.05, 0.075, 0.1, 0.15, 0.2, 0.25, 0.3, 0.4, 0.5, 0.6, 0.8, 1.0, 1.2})
+    for (double open : {0.0, 0.025, 0.05, 0.075, 0.1, 0.15, 0.2, 0.25, 0.3, 0.4, 0.5, 0.6, 0.7, 0.8,
+                        0.9, 1.0, 1.2})
       poses.push_back(perturbed(request, r, open, Eigen::Vector3d::Zero()));
     for (double d : {0.005, 0.01, 0.02})
       for (const Eigen::Vector3d& axis : {Eigen::Vector3d(1, 0, 0), Eigen::Vector3d(0, 1, 0),
@@ -67,6 +68,13 @@ TEST(SecureClasp, SameVerdictsAsTheReferenceOnSavedPoses) {
     EXPECT_EQ(got.start_in_collision, expected.start_in_collision) << p.name;
     EXPECT_EQ(got.secure, expected.secure) << p.name;
     EXPECT_EQ(got.escaped_sequences > 0, expected.escaped_sequences > 0) << p.name;
+    // Where the object got free is kept for escape.png: the motion of an escaping sequence.
+    EXPECT_EQ(got.escape.has_value(), got.escaped_sequences > 0) << p.name;
+    if (got.escape) {
+      tsrrt::SecureClaspReport scratch;
+      const auto c = tsrrt::detail::clasp_check_context(*p.robot, p.q, p.loop, scratch);
+      EXPECT_TRUE(tsrrt::detail::object_free(c, *got.escape, o.free_distance)) << p.name;
+    }
     if (expected.start_in_collision) {
       ++touching;
     } else {

@@ -1,0 +1,78 @@
+// The open hand's approach to contact: straight along its approach direction, the tool's
+// orientation kept, ending within one step of the first contact.
+#include <Eigen/Geometry>
+#include <gtest/gtest.h>
+
+#include "robots/collision_world.hpp"
+#include "robots/kinematics.hpp"
+#include "robots/robot_model.hpp"
+#include "tsrrt/clasp_planning.hpp"
+
+namespace claspplan::test {
+namespace {
+
+struct Pose {
+  Eigen::Vector3d tcp;
+  Eigen::Matrix3d tool;
+};
+
+Pose pose_at(const robots::RobotModel& m, const Eigen::VectorXd& q) {
+  robots::RobotData data(m);
+  robots::forward_kinematics(m, q, data);
+  return {robots::point_position(data, m.tcp), data.link_poses[m.tool_link].linear()};
+}
+
+// A 30 x 30 cm plate, 4 mm thick, square to `direction`, its near face at `near`.
+Eigen::Isometry3d plate_pose(const Eigen::Vector3d& near, const Eigen::Vector3d& direction) {
+  Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();
+  pose.linear() =
+      Eigen::Quaterniond::FromTwoVectors(Eigen::Vector3d::UnitZ(), direction).toRotationMatrix();
+  pose.translation() = near + 0.002 * direction;
+  return pose;
+}
+
+TEST(ApproachToContact, GoesStraightAlongTheApproachAndStopsWithinAStepOfContact) {
+  const robots::RobotModel m = robots::load_robot("kr5_sdh");
+  const Eigen::VectorXd q = m.home;
+  const Pose start = pose_at(m, q);
+  robots::RobotData data(m);
+  robots::forward_kinematics(m, q, data);
+  const Eigen::Vector3d direction = robots::vector_direction(data, m.v_fwd);
+  // The hand's farthest finger-curve point along the approach: a plate 3 cm beyond it.
+  robots::FingerCurvesData curves;
+  robots::finger_curves(m, q, data, curves, false);
+  double reach = 0.0;
+  for (const auto& curve : curves.points)
+    for (const auto& p : curve) reach = std::max(reach, (p - start.tcp).dot(direction));
+  const Eigen::Vector3d near = start.tcp + (reach + 0.03) * direction;
+  const Eigen::Vector3d size(0.3, 0.3, 0.004);
+
+  tsrrt::ApproachOptions o;
+  o.step = 0.004;
+  o.distance = 0.05;
+  robots::CollisionWorld free_space(m);
+  const auto unblocked = tsrrt::approach_until_contact(m, free_space, q, o);
+  ASSERT_EQ(unblocked.size(), 12u);  // 12 steps of 4 mm within 5 cm
+  EXPECT_NEAR((pose_at(m, unblocked.back()).tcp - start.tcp).norm(), 0.048, 1e-3);
+
+  robots::CollisionWorld world(m);
+  world.add_box(plate_pose(near, direction), size);
+  const auto poses = tsrrt::approach_until_contact(m, world, q, o);
+  ASSERT_FALSE(poses.empty());
+  ASSERT_LT(poses.size(), unblocked.size());
+  for (const auto& p : poses) {
+    EXPECT_FALSE(world.in_collision(p));
+    const Pose at = pose_at(m, p);
+    const Eigen::Vector3d moved = at.tcp - start.tcp;
+    EXPECT_LT(moved.cross(direction).norm(), 1e-3) << "off the approach line";
+    EXPECT_GT(moved.dot(direction), 0.0);
+    EXPECT_LT(Eigen::AngleAxisd(at.tool * start.tool.transpose()).angle(), 1e-3);
+  }
+  // One more step would touch: the same as the plate one step nearer.
+  robots::CollisionWorld nearer(m);
+  nearer.add_box(plate_pose(near - o.step * direction, direction), size);
+  EXPECT_TRUE(nearer.in_collision(poses.back()));
+}
+
+}  // namespace
+}  // namespace claspplan::test
