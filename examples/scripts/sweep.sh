@@ -56,7 +56,10 @@ for s in "$@"; do
     if [[ "$(field "$ok_key" "$f")" == "true" ]]; then
       ok=$((ok + 1)); field seconds "$f" >>"$work/t"; field "$count_key" "$f" >>"$work/c"
     else
-      reason=$(field reason "$f" | tr -d '"'); echo "${reason:-exit without a summary}" | cut -c1-90 >>"$work/r"
+      reason=$(field reason "$f" | tr -d '"')
+      # A bad input (exit 2) prints its one-line error instead of a summary.
+      [[ -n "$reason" ]] || reason=$(field error "$f" | tr -d '"' | sed 's/^./error: &/')
+      echo "${reason:-exit without a summary}" | cut -c1-90 >>"$work/r"
     fi
   done
   top=$(sort "$work/r" | uniq -c | sort -rn | head -1 | sed 's/^ *[0-9]* //')
