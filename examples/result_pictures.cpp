@@ -48,34 +48,49 @@ Eigen::Vector3d hand_centre(const robots::RobotModel& model, const Eigen::Vector
   return sum / static_cast<double>(points.size());
 }
 
+// The robot's shapes at q (only the hand's with `hand_only`).
+void draw_robot(SceneImage& image, const robots::RobotModel& model, const Eigen::VectorXd& q,
+                bool hand_only) {
+  robots::RobotData data(model);
+  robots::forward_kinematics(model, q, data);
+  for (const auto& shape : model.shapes) {
+    const bool hand = model.links[shape.link].hand;
+    if (hand_only && !hand) continue;
+    image.draw_mesh(shape_mesh(shape), robots::shape_pose(data, shape).matrix(),
+                    hand ? kHand : kArm);
+  }
+}
+
+// The close-up view directions of the hand at q: along the loop's tangent (front) and across the
+// closing plane (side), a little from behind the hand, so the palm and the fingers' far side both
+// show.
+struct ClaspViews {
+  Eigen::Vector3d front, side;
+};
+ClaspViews clasp_views(const robots::RobotModel& model, const Eigen::VectorXd& q) {
+  robots::RobotData data(model);
+  robots::forward_kinematics(model, q, data);
+  const Eigen::Vector3d forward = robots::vector_direction(data, model.v_fwd);
+  const Eigen::Vector3d sideways = robots::vector_direction(data, model.v_swd);
+  return {sideways - 0.35 * forward, forward.cross(sideways) - 0.35 * forward + 0.3 * sideways};
+}
+
 }  // namespace
 
 void draw_scene(SceneImage& image, const SceneGeometry& scene, const Eigen::VectorXd& q,
                 bool hand_only) {
   for (const auto& b : scene.boxes) image.draw_mesh(box_mesh(b.size), b.pose.matrix(), kBox);
   image.draw_mesh(scene.object, Eigen::Matrix4d::Identity(), kObject);
-  robots::RobotData data(scene.model);
-  robots::forward_kinematics(scene.model, q, data);
-  for (const auto& shape : scene.model.shapes) {
-    const bool hand = scene.model.links[shape.link].hand;
-    if (hand_only && !hand) continue;
-    image.draw_mesh(shape_mesh(shape), robots::shape_pose(data, shape).matrix(),
-                    hand ? kHand : kArm);
-  }
+  draw_robot(image, scene.model, q, hand_only);
   image.draw_polyline(scene.loop, true, kLoop, 3);
 }
 
 void write_clasp_views(const SceneGeometry& scene, const Eigen::VectorXd& q,
                        const std::string& dir) {
   const std::vector<Eigen::Vector3d> frame = hand_points(scene.model, q);
-  robots::RobotData data(scene.model);
-  robots::forward_kinematics(scene.model, q, data);
-  const Eigen::Vector3d forward = robots::vector_direction(data, scene.model.v_fwd);
-  const Eigen::Vector3d sideways = robots::vector_direction(data, scene.model.v_swd);
-  // A little from behind the hand, so the palm and the fingers' far side both show.
-  const std::pair<const char*, Eigen::Vector3d> views[] = {
-      {"clasp_front.png", sideways - 0.35 * forward},
-      {"clasp_side.png", forward.cross(sideways) - 0.35 * forward + 0.3 * sideways}};
+  const ClaspViews directions = clasp_views(scene.model, q);
+  const std::pair<const char*, Eigen::Vector3d> views[] = {{"clasp_front.png", directions.front},
+                                                           {"clasp_side.png", directions.side}};
   for (const auto& [name, direction] : views) {
     SceneImage image(framing_view(frame, direction));
     draw_scene(image, scene, q, /*hand_only=*/true);
@@ -90,16 +105,9 @@ void write_escape_view(const SceneGeometry& scene, const Eigen::VectorXd& q,
   for (const auto& p : scene.loop) moved.push_back(escape * p);
   std::vector<Eigen::Vector3d> frame = hand_points(scene.model, q);
   frame.insert(frame.end(), moved.begin(), moved.end());
-  robots::RobotData data(scene.model);
-  robots::forward_kinematics(scene.model, q, data);
-  // Seen across the closing plane, as clasp_side.png.
-  const Eigen::Vector3d forward = robots::vector_direction(data, scene.model.v_fwd);
-  const Eigen::Vector3d sideways = robots::vector_direction(data, scene.model.v_swd);
-  SceneImage image(framing_view(frame, forward.cross(sideways) - 0.35 * forward + 0.3 * sideways));
+  SceneImage image(framing_view(frame, clasp_views(scene.model, q).side));  // as clasp_side.png
   image.draw_mesh(scene.object, escape.matrix(), kObject);
-  for (const auto& shape : scene.model.shapes)
-    if (scene.model.links[shape.link].hand)
-      image.draw_mesh(shape_mesh(shape), robots::shape_pose(data, shape).matrix(), kHand);
+  draw_robot(image, scene.model, q, /*hand_only=*/true);
   image.draw_polyline(scene.loop, true, kStartLoop, 2);
   image.draw_polyline(moved, true, kLoop, 3);
   image.draw_label("escape: the object got free of the closed hand (" + scene.model.name +

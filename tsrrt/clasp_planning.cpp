@@ -207,7 +207,8 @@ std::vector<Eigen::VectorXd> approach_until_contact(const robots::RobotModel& mo
           J * J.transpose() + kDamping * kDamping * Eigen::Matrix<double, 6, 6>::Identity();
       next.head(n) += J.transpose() * JJt.ldlt().solve(error);
     }
-    if (error.norm() > kLineTolerance || !model.within_limits(next) || world.in_collision(next))
+    // `data` holds the kinematics at `next`: the Newton loop ends right after computing them.
+    if (error.norm() > kLineTolerance || !model.within_limits(next) || world.in_collision(data))
       break;
     poses.push_back(next);
     current = next;
