@@ -259,24 +259,33 @@ std::vector<Eigen::Vector3d> depth_to_points(const DepthView& view) {
   return pts;
 }
 
-int append_depth_points(const DepthView& view, std::vector<Eigen::Vector3d>& out,
-                        const Eigen::AlignedBox3d& keep) {
+DepthPixels back_project(const DepthView& view, const Eigen::AlignedBox3d& keep,
+                         Eigen::Vector3d* out) {
   const CameraModel& c = view.camera;
   const Eigen::Matrix3d R = c.T_world_camera.linear();
   const Eigen::Vector3d t = c.T_world_camera.translation();
   const bool crop = !keep.isEmpty();
-  int valid = 0;
+  DepthPixels n;
   for (int v = 0; v < view.image.height; ++v) {
     for (int u = 0; u < view.image.width; ++u) {
       const double z = view.image.at(u, v);
       if (!(z > 0.0) || !std::isfinite(z)) continue;
-      ++valid;
+      ++n.valid;
       const Eigen::Vector3d p =
           R * Eigen::Vector3d((u - c.cx) * z / c.fx, (v - c.cy) * z / c.fy, z) + t;
-      if (!crop || keep.contains(p)) out.push_back(p);
+      if (!crop || keep.contains(p)) out[n.kept++] = p;
     }
   }
-  return valid;
+  return n;
+}
+
+int append_depth_points(const DepthView& view, std::vector<Eigen::Vector3d>& out,
+                        const Eigen::AlignedBox3d& keep) {
+  const std::size_t old = out.size();
+  out.resize(old + view.image.valid_count());
+  const DepthPixels n = back_project(view, keep, out.data() + old);
+  out.resize(old + n.kept);
+  return n.valid;
 }
 
 }  // namespace claspplan::perception

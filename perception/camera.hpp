@@ -89,4 +89,13 @@ std::vector<Eigen::Vector3d> depth_to_points(const DepthView& view);
 int append_depth_points(const DepthView& view, std::vector<Eigen::Vector3d>& out,
                         const Eigen::AlignedBox3d& keep = {});
 
+struct DepthPixels {
+  int valid = 0;         ///< pixels with a reading
+  std::size_t kept = 0;  ///< of those, the points written (inside the box)
+};
+/// The same into out[0, kept), which must have room for view.image.valid_count() points: several
+/// views written side by side into one buffer, each by its own thread.
+DepthPixels back_project(const DepthView& view, const Eigen::AlignedBox3d& keep,
+                         Eigen::Vector3d* out);
+
 }  // namespace claspplan::perception

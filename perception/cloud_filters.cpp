@@ -2,9 +2,11 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 #include <numeric>
 #include <random>
 #include <stdexcept>
+#include <thread>
 
 #include <pcl/point_cloud.h>
 #include <pcl/point_types.h>
@@ -12,6 +14,7 @@
 #include <pcl/sample_consensus/model_types.h>
 #include <pcl/segmentation/sac_segmentation.h>
 
+#include "perception/first_occurrences.hpp"
 #include "perception/parallel.hpp"
 #include "perception/point_index.hpp"
 #include "perception/random_draws.hpp"
@@ -43,21 +46,54 @@ PointCloud crop_to_box(const PointCloud& cloud, const Eigen::AlignedBox3d& box) 
   return out;
 }
 
+namespace {
+
+// The first `count` entries of a partial Fisher-Yates shuffle of 0 .. n-1, storing only the
+// positions it touches (at most 2 count) in a hash table instead of all n: a few thousand draws
+// from hundreds of thousands of depth points.
+std::vector<int> shuffled_prefix(std::size_t n, int count, std::mt19937_64& rng) {
+  std::size_t capacity = 16;
+  while (capacity < 4 * static_cast<std::size_t>(count)) capacity *= 2;
+  std::vector<std::int64_t> position(capacity, -1);
+  std::vector<int> value(capacity);
+  const auto slot = [&](std::size_t p) {
+    std::size_t s = (p * 0x9e3779b97f4a7c15ULL >> 20) & (capacity - 1);
+    while (position[s] >= 0 && static_cast<std::size_t>(position[s]) != p)
+      s = (s + 1) & (capacity - 1);
+    return s;
+  };
+  const auto get = [&](std::size_t p) {
+    const std::size_t s = slot(p);
+    return position[s] < 0 ? static_cast<int>(p) : value[s];
+  };
+  const auto set = [&](std::size_t p, int v) {
+    const std::size_t s = slot(p);
+    position[s] = static_cast<std::int64_t>(p);
+    value[s] = v;
+  };
+  std::vector<int> prefix(count);
+  for (int i = 0; i < count; ++i) {
+    const std::size_t pick = i + uniform_index(rng(), n - i);
+    const int at_pick = get(pick);
+    set(pick, get(i));
+    prefix[i] = at_pick;  // position i is never read again
+  }
+  return prefix;
+}
+
+}  // namespace
+
 PointCloud random_subset(const PointCloud& cloud, int count, std::uint64_t seed) {
   if (count < 0) throw std::invalid_argument("random_subset: negative count");
   if (static_cast<int>(cloud.size()) <= count) return cloud;
-  std::vector<int> idx(cloud.size());
-  std::iota(idx.begin(), idx.end(), 0);
   std::mt19937_64 rng(seed);
-  for (int i = 0; i < count; ++i) {  // partial Fisher-Yates
-    const std::size_t pick = i + uniform_index(rng(), idx.size() - i);
-    std::swap(idx[i], idx[pick]);
-  }
-  idx.resize(count);
-  std::sort(idx.begin(), idx.end());
+  // Marks instead of a sort: the picks in input order, in one pass.
+  std::vector<char> picked(cloud.size(), 0);
+  for (int i : shuffled_prefix(cloud.size(), count, rng)) picked[i] = 1;
   PointCloud out;
   out.reserve(count);
-  for (int i : idx) out.push_back(cloud[i]);
+  for (std::size_t i = 0; i < cloud.size(); ++i)
+    if (picked[i]) out.push_back(cloud[i]);
   return out;
 }
 
@@ -65,20 +101,17 @@ namespace {
 
 // The first point of each occupied grid cell of size `cell` (indices, in input order).
 std::vector<int> one_per_cell(const PointCloud& cloud, const Eigen::Vector3d& origin, double cell) {
-  std::vector<std::pair<std::uint64_t, int>> keys(cloud.size());
+  std::vector<std::uint64_t> keys(cloud.size());
   for (std::size_t i = 0; i < cloud.size(); ++i) {
     const Eigen::Vector3d c = ((cloud[i] - origin) / cell).array().floor();
     const auto k = [&](int a) {
       return static_cast<std::uint64_t>(std::clamp(c[a], 0.0, 2097151.0));
     };
-    keys[i] = {k(0) << 42 | k(1) << 21 | k(2), static_cast<int>(i)};
+    keys[i] = k(0) << 42 | k(1) << 21 | k(2);
   }
-  std::sort(keys.begin(), keys.end());
-  std::vector<int> picks;
-  for (std::size_t i = 0; i < keys.size(); ++i)
-    if (i == 0 || keys[i].first != keys[i - 1].first) picks.push_back(keys[i].second);
-  std::sort(picks.begin(), picks.end());
-  return picks;
+  return first_occurrences(
+      keys.size(), [&](std::size_t i) { return keys[i]; },
+      [&](std::size_t i, std::size_t j) { return keys[i] == keys[j]; });
 }
 
 }  // namespace
@@ -134,23 +167,34 @@ PlaneRemovalResult remove_supporting_plane(const PointCloud& cloud, const PlaneR
   plane /= nn;
   if (plane.z() < 0) plane = -plane;
   if (std::acos(std::min(1.0, plane.z())) > o.max_tilt) return unchanged();
-  // Large, and the rest of the scene above it: a table, not an object's top face.
+  // Large, and the rest of the scene above it: a table, not an object's top face. One pass on all
+  // cores counts the sides and keeps the points above (in chunk order: the input's).
+  struct Side {
+    int on = 0, below = 0;
+    PointCloud above;
+  };
+  std::vector<Side> sides(std::max(1u, std::thread::hardware_concurrency()));
+  const std::size_t n = cloud.size(), k = sides.size();
+  parallel_chunks(k, 0, [&](std::size_t first, std::size_t last) {
+    for (std::size_t c = first; c < last; ++c)
+      for (std::size_t i = n * c / k; i < n * (c + 1) / k; ++i) {
+        const double s = plane.head<3>().dot(cloud[i]) + plane.w();
+        if (std::abs(s) <= o.distance)
+          ++sides[c].on;
+        else if (s > 0)
+          sides[c].above.push_back(cloud[i]);
+        else
+          ++sides[c].below;
+      }
+  });
   int on = 0, above = 0, below = 0;
-  for (const auto& p : cloud) {
-    const double s = plane.head<3>().dot(p) + plane.w();
-    if (std::abs(s) <= o.distance)
-      ++on;
-    else if (s > 0)
-      ++above;
-    else
-      ++below;
-  }
+  for (const Side& side : sides)
+    on += side.on, below += side.below, above += static_cast<int>(side.above.size());
   if (on < o.min_fraction * cloud.size()) return unchanged();
   if (above + below > 0 && above < o.above_fraction * (above + below)) return unchanged();
   PlaneRemovalResult r;
   r.kept.reserve(static_cast<size_t>(above));
-  for (const auto& p : cloud)
-    if (plane.head<3>().dot(p) + plane.w() > o.distance) r.kept.push_back(p);
+  for (const Side& side : sides) r.kept.insert(r.kept.end(), side.above.begin(), side.above.end());
   r.removed = true;
   r.plane = plane;
   r.plane_points = static_cast<int>(cloud.size() - r.kept.size());
@@ -368,24 +412,22 @@ PointCloud spatial_order(const PointCloud& cloud) {
 }
 
 PointCloud unique_points(const PointCloud& cloud) {
-  std::vector<int> order(cloud.size());
-  std::iota(order.begin(), order.end(), 0);
-  auto less = [&](int a, int b) {
-    const auto& p = cloud[a];
-    const auto& q = cloud[b];
-    if (p.x() != q.x()) return p.x() < q.x();
-    if (p.y() != q.y()) return p.y() < q.y();
-    if (p.z() != q.z()) return p.z() < q.z();
-    return a < b;
+  const auto bits = [](double x) {
+    std::uint64_t b;
+    x += 0.0;  // -0 == +0: one bit pattern
+    std::memcpy(&b, &x, sizeof b);
+    return b;
   };
-  std::sort(order.begin(), order.end(), less);
-  std::vector<char> keep(cloud.size(), 1);
-  for (size_t k = 1; k < order.size(); ++k)
-    if (cloud[order[k]] == cloud[order[k - 1]]) keep[order[k]] = 0;
+  const auto hash = [&](std::size_t i) {
+    const Eigen::Vector3d& p = cloud[i];
+    return bits(p.x()) ^ (bits(p.y()) * 0x9e3779b97f4a7c15ULL) ^
+           (bits(p.z()) * 0xc2b2ae3d27d4eb4fULL);
+  };
   PointCloud out;
-  out.reserve(cloud.size());
-  for (size_t i = 0; i < cloud.size(); ++i)
-    if (keep[i]) out.push_back(cloud[i]);
+  const std::vector<int> firsts = first_occurrences(
+      cloud.size(), hash, [&](std::size_t i, std::size_t j) { return cloud[i] == cloud[j]; });
+  out.reserve(firsts.size());
+  for (int i : firsts) out.push_back(cloud[i]);
   return out;
 }
 

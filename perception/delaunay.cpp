@@ -100,15 +100,26 @@ DelaunayGraph delaunay_3d(const PointCloud& points) {
   // in lexicographic vertex order, which is also the order of their sorted face ids (edge ab comes
   // before ac and ac before bc when a < b < c): a canonical order, independent of CGAL's memory
   // addresses, so that results are identical from run to run.
-  std::vector<std::array<int, 4>> cells;
-  cells.reserve(dt.number_of_finite_cells());
+  std::vector<std::array<int, 4>> unsorted;
+  unsorted.reserve(dt.number_of_finite_cells());
   for (auto c = dt.finite_cells_begin(); c != dt.finite_cells_end(); ++c) {
     std::array<int, 4> v;
     for (int i = 0; i < 4; ++i) v[i] = c->vertex(i)->info();
     std::sort(v.begin(), v.end());
-    cells.push_back(v);
+    unsorted.push_back(v);
   }
-  std::sort(cells.begin(), cells.end());
+  // Sorted: bucketed by lowest vertex (a counting sort), then each bucket's few cells compared.
+  std::vector<std::array<int, 4>> cells(unsorted.size());
+  {
+    std::vector<int> at(n + 1, 0);
+    for (const auto& c : unsorted) ++at[c[0] + 1];
+    for (int v = 0; v < n; ++v) at[v + 1] += at[v];
+    std::vector<int> fill(at.begin(), at.end() - 1);
+    for (const auto& c : unsorted) cells[fill[c[0]]++] = c;
+    for (int v = 0; v < n; ++v)
+      if (at[v + 1] - at[v] > 1) std::sort(cells.begin() + at[v], cells.begin() + at[v + 1]);
+  }
+  unsorted = {};
   // Each vertex's incident cells, with its place in the cell's sorted vertices.
   std::vector<int> incident_start(n + 1, 0);
   for (const auto& c : cells)
@@ -154,14 +165,22 @@ DelaunayGraph delaunay_3d(const PointCloud& points) {
       g.edges.push_back({a, b});
       g.edge_length.push_back((points[a] - points[b]).norm());
     }
+  // The triangles' edge ids, for two halves of the vertices side by side.
   auto edge_id = [&](int a, int b) { return edges.find(a, Simplices::pack(b)); };
-  g.triangles.reserve(faces.size());
-  for (int a = 0; a < n; ++a)
-    for (int i = faces.first(a); i < faces.end(a); ++i) {
-      const int b = static_cast<int>(faces.rest(i) >> 21);
-      const int c = static_cast<int>(faces.rest(i) & ((1u << 21) - 1));
-      g.triangles.push_back({edge_id(a, b), edge_id(a, c), edge_id(b, c)});  // ascending
-    }
+  g.triangles.resize(faces.size());
+  const auto triangles_of = [&](int from, int to) {
+    for (int a = from; a < to; ++a)
+      for (int i = faces.first(a); i < faces.end(a); ++i) {
+        const int b = static_cast<int>(faces.rest(i) >> 21);
+        const int c = static_cast<int>(faces.rest(i) & ((1u << 21) - 1));
+        g.triangles[i] = {edge_id(a, b), edge_id(a, c), edge_id(b, c)};  // ascending
+      }
+  };
+  int half = 0;
+  while (half < n && faces.first(half) < faces.size() / 2) ++half;
+  auto upper_half = std::async(launch, triangles_of, half, n);
+  triangles_of(0, half);
+  upper_half.get();
   g.tetrahedra = tetrahedra_later.get();
   return g;
 }

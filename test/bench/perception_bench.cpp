@@ -56,6 +56,13 @@ const DepthFiles& depth_files(int scale = 2) {
   return *f;
 }
 
+// Reading the two depth images and their cameras alone (PNG inflation most of it).
+void BM_LoadDepthFiles(benchmark::State& state) {
+  const DepthFiles& f = depth_files(static_cast<int>(state.range(0)));
+  for (auto _ : state) benchmark::DoNotOptimize(load_inputs(f.pngs, f.cameras).depth_views.data());
+}
+BENCHMARK(BM_LoadDepthFiles)->Arg(1)->Arg(2)->Unit(benchmark::kMillisecond);
+
 // The whole pipeline from the files: PNG and YAML reading, back-projection, plane and outlier
 // removal, down-sampling, Delaunay, K_d, the exact shortest basis, ranking and 12 targets.
 // Arguments: N, resolution scale.

@@ -1,12 +1,16 @@
 // Farthest-point sampling against its definition, computed by brute force: every pick is the
 // point farthest from all earlier picks (ties: the larger index), on random clouds, on a grid
-// (many equal distances) and with duplicate points.
+// (many equal distances) and with duplicate points; the seeded subsets and the duplicate filter
+// against their plain definitions.
 #include "perception/cloud_filters.hpp"
 
+#include <algorithm>
 #include <random>
+#include <utility>
 
 #include <gtest/gtest.h>
 
+#include "perception/first_occurrences.hpp"
 #include "perception/random_draws.hpp"
 
 namespace claspplan::perception {
@@ -66,6 +70,52 @@ TEST(FarthestPointSampling, StopsAtDuplicatesAndTakesAllWhenAskedForMore) {
   const PointCloud two{{0, 0, 0}, {1, 0, 0}};
   EXPECT_EQ(farthest_point_indices(two, 5, 1), (std::vector<int>{0, 1}));
   EXPECT_TRUE(farthest_point_indices({}, 3, 1).empty());
+}
+
+// The sparse shuffle behind random_subset() against the plain partial Fisher-Yates on an array of
+// every index, then sorted: the same points, in input order, for small and large clouds.
+TEST(RandomSubset, SameAsAFullPartialShuffle) {
+  for (const auto& [n, count] : std::vector<std::pair<int, int>>{
+           {10, 3}, {10, 9}, {1000, 1}, {1000, 500}, {200000, 20000}, {200000, 199999}}) {
+    PointCloud cloud(n);
+    for (int i = 0; i < n; ++i) cloud[i] = Eigen::Vector3d(i, -i, 0.5 * i);
+    for (std::uint64_t seed : {1u, 7u}) {
+      std::vector<int> idx(n);
+      for (int i = 0; i < n; ++i) idx[i] = i;
+      std::mt19937_64 rng(seed);
+      for (int i = 0; i < count; ++i) std::swap(idx[i], idx[i + uniform_index(rng(), n - i)]);
+      idx.resize(count);
+      std::sort(idx.begin(), idx.end());
+      PointCloud expected;
+      for (int i : idx) expected.push_back(cloud[i]);
+      EXPECT_EQ(random_subset(cloud, count, seed), expected) << n << " " << count << " " << seed;
+    }
+  }
+}
+
+TEST(UniquePoints, KeepsFirstOccurrencesInOrderAndTakesMinusZeroForZero) {
+  const PointCloud cloud{{1, 2, 3}, {0, 0, 0}, {1, 2, 3},        {-0.0, 0, -0.0},
+                         {4, 5, 6}, {0, 0, 0}, {1, 2, 3.0000001}};
+  const PointCloud expected{{1, 2, 3}, {0, 0, 0}, {4, 5, 6}, {1, 2, 3.0000001}};
+  EXPECT_EQ(unique_points(cloud), expected);
+  EXPECT_TRUE(unique_points({}).empty());
+}
+
+TEST(FirstOccurrences, OnePerDistinctKeyInInputOrder) {
+  std::vector<int> keys;
+  std::mt19937_64 rng(3);
+  for (int i = 0; i < 5000; ++i) keys.push_back(static_cast<int>(rng() % 700));
+  std::vector<int> expected;
+  std::vector<char> seen(700, 0);
+  for (int i = 0; i < 5000; ++i)
+    if (!seen[keys[i]]) seen[keys[i]] = 1, expected.push_back(i);
+  // A poor hash (many collisions) gives the same answer, only slower.
+  for (int spread : {1, 0}) {
+    const auto firsts = first_occurrences(
+        keys.size(), [&](std::size_t i) { return spread ? keys[i] : keys[i] % 3; },
+        [&](std::size_t i, std::size_t j) { return keys[i] == keys[j]; });
+    EXPECT_EQ(firsts, expected);
+  }
 }
 
 }  // namespace

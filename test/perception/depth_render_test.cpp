@@ -46,7 +46,7 @@ TEST(DepthRender, PlaneAtKnownDistanceGivesExactDepth) {
 }
 
 // Back-projection: each valid pixel once, on its ray at its depth; a second view appends after
-// the first (the pipeline merges its views this way).
+// the first; a crop keeps the points inside its box, in the same order.
 TEST(DepthRender, BackProjectionPutsEachPixelOnItsRayAndAppendsViews) {
   DepthView a{camera_at_origin_looking_down_z(40, 30), {}};
   a.image = render_depth(quad(0.6, 10.0), a.camera);
@@ -65,6 +65,19 @@ TEST(DepthRender, BackProjectionPutsEachPixelOnItsRayAndAppendsViews) {
     EXPECT_EQ(both[i], pa[i]);
     EXPECT_NEAR((both[pa.size() + i] - pa[i]).z(), 1.0, 1e-12);
   }
+  // Into a buffer with a crop box: the points inside it, in pixel order, and every valid pixel
+  // counted.
+  Eigen::AlignedBox3d left_half(Eigen::Vector3d(-1, -1, 0), Eigen::Vector3d(0, 1, 1));
+  std::vector<Eigen::Vector3d> buffer(a.image.valid_count());
+  const DepthPixels n = back_project(a, left_half, buffer.data());
+  EXPECT_EQ(n.valid, static_cast<int>(pa.size()));
+  std::vector<Eigen::Vector3d> inside;
+  for (const auto& p : pa)
+    if (left_half.contains(p)) inside.push_back(p);
+  ASSERT_GT(inside.size(), 0u);
+  ASSERT_LT(inside.size(), pa.size());
+  buffer.resize(n.kept);
+  EXPECT_EQ(buffer, inside);
 }
 
 TEST(DepthRender, SphereDepthProfile) {
