@@ -18,6 +18,7 @@
 
 #include "perception/homology_graph.hpp"
 #include "perception/input_error.hpp"
+#include "perception/parallel.hpp"
 
 namespace claspplan::perception {
 
@@ -553,14 +554,20 @@ void shortest_cycles(const SimplicialComplex& complex, const Graph& g, const Wor
 // shortest-path tree of K_d, the support becomes where that tree's fronts met around each hole.
 // Of a few roots per component the tree with the fewest support edges is kept: every support edge
 // costs a Dijkstra root later (the purse at 40,000 points: 1,235 support edges before, 178 after).
-void regauge(const Graph& g, int W, const std::vector<int>& component, std::vector<Word>& ann) {
+void regauge(const Graph& g, int W, const std::vector<int>& component, int threads,
+             std::vector<Word>& ann) {
   std::vector<std::vector<int>> members;
   for (int v = 0; v < g.n; ++v) {
     if (component[v] >= static_cast<int>(members.size())) members.resize(component[v] + 1);
     members[component[v]].push_back(v);
   }
-  Dijkstra dj(g, W);
-  std::vector<Word> best_pa(size_t(g.n) * W, 0), pa(size_t(g.n) * W);
+  // The four trees of a component are grown side by side (each with its own search and prefix
+  // annotations); the first with the fewest support edges wins, as in sequence.
+  constexpr int kTrees = 4;
+  std::vector<std::unique_ptr<Dijkstra>> dj;
+  std::vector<std::vector<Word>> pa(kTrees, std::vector<Word>(size_t(g.n) * W));
+  for (int q = 0; q < kTrees; ++q) dj.push_back(std::make_unique<Dijkstra>(g, W));
+  std::vector<Word> best_pa(size_t(g.n) * W, 0);
   // Each edge of the vertices vs once, from its lower end: f(v, w, its annotation).
   const auto for_each_edge = [&](const std::vector<int>& vs, auto&& f) {
     for (int v : vs)
@@ -580,16 +587,22 @@ void regauge(const Graph& g, int W, const std::vector<int>& component, std::vect
   };
   for (const auto& vs : members) {
     int best = support_of(vs, best_pa);  // the gauge as it is
-    for (int q = 0; q < 4; ++q) {
-      dj.run(vs[vs.size() * q / 4], kInf, ann.data(), [](int, int, int, double) {});
-      for (int v : vs) std::copy_n(dj.pa(v), W, pa.begin() + size_t(v) * W);
-      const int count = support_of(vs, pa);
-      if (count < best) {
-        best = count;
-        for (int v : vs)
-          std::copy_n(pa.begin() + size_t(v) * W, W, best_pa.begin() + size_t(v) * W);
+    std::array<int, kTrees> count{};
+    const auto grow = [&](std::size_t first, std::size_t last) {
+      for (std::size_t q = first; q < last; ++q) {
+        dj[q]->run(vs[vs.size() * q / kTrees], kInf, ann.data(), [](int, int, int, double) {});
+        for (int v : vs) std::copy_n(dj[q]->pa(v), W, pa[q].begin() + size_t(v) * W);
+        count[q] = support_of(vs, pa[q]);
       }
-    }
+    };
+    // Small components (noise clusters, many of them) are not worth a thread each.
+    parallel_chunks(kTrees, vs.size() < 2000 ? 1 : threads, grow);
+    for (int q = 0; q < kTrees; ++q)
+      if (count[q] < best) {
+        best = count[q];
+        for (int v : vs)
+          std::copy_n(pa[q].begin() + size_t(v) * W, W, best_pa.begin() + size_t(v) * W);
+      }
   }
   for (const auto& vs : members)
     for_each_edge(vs, [&](int v, int w, Word* a) {
@@ -644,7 +657,7 @@ HomologyBasis persistent_homology_basis(const SimplicialComplex& complex,
                                   std::to_string(w) + " is not in the larger complex");
     std::copy_n(big.edge_ann.data() + size_t(in_larger) * W, W, ann.data() + e * W);
   }
-  regauge(g, W, own.component, ann);
+  regauge(g, W, own.component, options.threads, ann);
   shortest_cycles(complex, g, ann.data(), W, own.component, -1, options, out);
   return out;
 }

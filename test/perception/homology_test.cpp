@@ -198,6 +198,32 @@ TEST(Homology, PersistentBasisOnRandomComplexes) {
   EXPECT_GT(fewer, 20);  // loops did fill in
 }
 
+// A component large enough that the re-gauging grows its four trees on several threads: the same
+// loops as on one thread.
+TEST(Homology, PersistentBasisOfALargeComponentOnAnyThreadCount) {
+  std::mt19937_64 rng(7);
+  std::uniform_real_distribution<double> uni(0.0, 1.0);
+  PointCloud pts;
+  for (int i = 0; i < 3000; ++i) {
+    const double u = 2 * M_PI * uni(rng), v = 2 * M_PI * uni(rng);
+    pts.emplace_back((1.0 + 0.35 * std::cos(v)) * std::cos(u),
+                     (1.0 + 0.35 * std::cos(v)) * std::sin(u), 0.35 * std::sin(v));
+  }
+  const DelaunayGraph dg = delaunay_3d(pts);
+  const double d = 3.0 * mean_spacing(pts);
+  const SimplicialComplex k = build_complex(dg, d), larger = build_complex(dg, 0.3);
+  HomologyOptions one, two;
+  one.threads = 1;
+  two.threads = 2;
+  const HomologyBasis a = persistent_homology_basis(k, larger, one);
+  const HomologyBasis b = persistent_homology_basis(k, larger, two);
+  ASSERT_EQ(a.cycles.size(), 2u);  // the torus's two loops
+  ASSERT_EQ(b.cycles.size(), a.cycles.size());
+  for (size_t i = 0; i < a.cycles.size(); ++i)
+    EXPECT_EQ(a.cycles[i].vertices, b.cycles[i].vertices);
+  EXPECT_EQ(a.support_edges, b.support_edges);
+}
+
 // The reduction skips each tetrahedron's last face (its boundary is the sum of the other three):
 // the same loops, classes and persistence verdicts as without the tetrahedra, on thick complexes
 // (d up to 4 times the spacing) where many faces are skipped.
