@@ -264,7 +264,9 @@ class FarthestPoints {
     double best = 0.0;
     int best_index = -1;
   };
-  static constexpr int kLeaf = 8;
+  // Leaves of up to 32 points: a leaf scan is cheaper than more boxes to test and refresh
+  // (`BM_FarthestPointSampling/10000` 40-42 -> 33-36 ms against leaves of 8).
+  static constexpr int kLeaf = 32;
 
   int build(int begin, int end) {
     const int index = static_cast<int>(nodes_.size());
