@@ -124,6 +124,7 @@ json planner_json(const tsrrt::ClaspResult& r, const SceneGeometry& scene,
   result["control_steps"] = st.control_steps;
   result["clasp_candidates"] = st.clasp_candidates;
   result["clasp_candidates_screened"] = st.clasp_candidates_screened;
+  result["targets_without_room"] = st.targets_without_room;
   const json outcomes = outcomes_json(st.connect_outcomes);
   result["connect_outcomes"] = outcomes;
   if (st.clasp_candidates > st.clasp_candidates_screened)

@@ -75,8 +75,7 @@ bool ClaspProblem::sample_configuration(const std::function<std::uint64_t()>& bi
   return false;
 }
 
-std::vector<Eigen::Vector3d> clasp_approaches(const servo::Points& loop,
-                                              const servo::ClaspTarget& target, double distance) {
+ApproachFrame approach_frame(const servo::Points& loop, const servo::ClaspTarget& target) {
   // The loop's centroid, weighting each point by its two half segments (uneven sampling).
   Eigen::Vector3d centre = Eigen::Vector3d::Zero();
   double total = 0.0;
@@ -87,17 +86,26 @@ std::vector<Eigen::Vector3d> clasp_approaches(const servo::Points& loop,
     total += w;
   }
   centre = total > 0.0 ? Eigen::Vector3d(centre / total) : target.point;
-  const Eigen::Vector3d t = target.tangent.normalized();
-  Eigen::Vector3d r = target.point - centre;
-  r -= t * t.dot(r);
-  r = r.norm() > 1e-9 ? Eigen::Vector3d(r.normalized()) : t.unitOrthogonal();
-  const Eigen::Vector3d normal = t.cross(r);
+  ApproachFrame f;
+  f.t = target.tangent.normalized();
+  f.r = target.point - centre;
+  f.r -= f.t * f.t.dot(f.r);
+  f.r = f.r.norm() > 1e-9 ? Eigen::Vector3d(f.r.normalized()) : f.t.unitOrthogonal();
+  f.n = f.t.cross(f.r);
+  return f;
+}
+
+std::vector<Eigen::Vector2d> approach_angles() {
   const double s = std::sqrt(0.5);
-  const std::pair<double, double> directions[] = {{1, 0}, {0, 1}, {0, -1}, {s, s}, {s, -s}};
+  return {{1, 0}, {0, 1}, {0, -1}, {s, s}, {s, -s}};
+}
+
+std::vector<Eigen::Vector3d> clasp_approaches(const servo::Points& loop,
+                                              const servo::ClaspTarget& target, double distance) {
+  const ApproachFrame frame = approach_frame(loop, target);
   std::vector<Eigen::Vector3d> points;
-  for (const auto& [c, sn] : directions) {
-    points.push_back(target.point + distance * (c * r + sn * normal));
-  }
+  for (const auto& angle : approach_angles())
+    points.push_back(target.point + distance * frame.direction(angle));
   return points;
 }
 

@@ -65,10 +65,24 @@ class ClaspProblem final : public PlanningProblem {
   double approach_distance_ = 0.1;
 };
 
-/// Where to approach clasp target `target` of `loop` from: with c the loop's centroid, r the unit
-/// component of (p − c) orthogonal to the tangent t (outward from the hole) and n = t × r, the
-/// points p + distance·(cos θ r + sin θ n) for θ = 0, +90°, −90°, +45°, −45° (in that order):
-/// from outside the loop and from both sides of its plane, never from inside the hole.
+/// The frame clasp target `target` of `loop` is approached in: with c the loop's centroid, r the
+/// unit component of (p − c) orthogonal to the tangent t (outward from the hole) and n = t × r.
+struct ApproachFrame {
+  Eigen::Vector3d r, n, t;
+  /// The unit direction from the target toward the approach at angle θ, given as
+  /// (cos θ, sin θ): cos θ r + sin θ n.
+  Eigen::Vector3d direction(const Eigen::Vector2d& angle) const {
+    return angle.x() * r + angle.y() * n;
+  }
+};
+ApproachFrame approach_frame(const servo::Points& loop, const servo::ClaspTarget& target);
+
+/// The approach angles θ, each as (cos θ, sin θ): 0, +90°, −90°, +45°, −45°, in that order.
+std::vector<Eigen::Vector2d> approach_angles();
+
+/// Where to approach clasp target `target` of `loop` from: the points p + distance·direction(θ)
+/// of its approach_frame() for θ in approach_angles(): from outside the loop and from both sides
+/// of its plane, never from inside the hole.
 std::vector<Eigen::Vector3d> clasp_approaches(const servo::Points& loop,
                                               const servo::ClaspTarget& target, double distance);
 

@@ -33,14 +33,30 @@ std::string no_loop_reason(const perception::ObjectModel& object) {
   if (object.loops.empty() && object.unstable_loops > 0)
     return "no stable loop: all " + std::to_string(object.unstable_loops) + " loops" + filled_in;
   if (object.loops.empty()) return "the object has no loops (beta1 = 0)";
-  // The widest holes first: why the most promising loops were refused.
+  // Loops refused for the hand's room first (they passed every other test), then the widest
+  // holes: why the most promising loops were refused.
   std::vector<const perception::Loop*> widest;
   for (const auto& l : object.loops) widest.push_back(&l);
-  std::stable_sort(widest.begin(), widest.end(),
-                   [](const auto* a, const auto* b) { return a->hole_width > b->hole_width; });
+  std::stable_sort(widest.begin(), widest.end(), [](const auto* a, const auto* b) {
+    const bool room_a = a->verdict == "no_room", room_b = b->verdict == "no_room";
+    if (room_a != room_b) return room_a;
+    return a->hole_width > b->hole_width;
+  });
+  // The same reason for several of them is said once, with their number.
+  std::vector<std::pair<std::string, int>> reasons;
+  for (std::size_t i = 0; i < widest.size() && i < 3; ++i) {
+    auto same = std::find_if(reasons.begin(), reasons.end(),
+                             [&](const auto& r) { return r.first == widest[i]->reason; });
+    if (same == reasons.end())
+      reasons.push_back({widest[i]->reason, 1});
+    else
+      ++same->second;
+  }
   std::string why = "no claspable loop: ";
-  for (std::size_t i = 0; i < widest.size() && i < 3; ++i)
-    why += (i ? "; " : "") + widest[i]->reason;
+  for (std::size_t i = 0; i < reasons.size(); ++i) {
+    why += (i ? "; " : "") + reasons[i].first;
+    if (reasons[i].second > 1) why += " (" + std::to_string(reasons[i].second) + " loops)";
+  }
   // A hole narrower than about d' (a small handle) is among these, not among the reasons above.
   if (object.unstable_loops > 0) {
     why += "; " + std::to_string(object.unstable_loops) + " more loop" +

@@ -10,6 +10,7 @@
 #include "perception/mesh.hpp"
 #include "tsrrt/clasp_scene.hpp"
 #include "tsrrt/elapsed.hpp"
+#include "tsrrt/hand_room.hpp"
 
 namespace claspplan::tsrrt {
 namespace {
@@ -123,6 +124,49 @@ void run_search(const ClaspScene& scene, const Say& say, ClaspResult& r) {
                                 std::to_string(check.sequences) + " sequences";
 }
 
+// The loop to clasp and its targets. The clasp targets of a loop where the closed hand reaches
+// into the environment at every approach are dropped; a claspable loop left without targets is
+// refused ("no_room") and the next one tried, unless the request names the loop.
+int choose_loop_with_room(const robots::RobotModel& model, const ClaspRequest& request,
+                          robots::CollisionWorld& environment, const Say& say, ClaspResult& r) {
+  for (int chosen = choose_loop(r.object, request.loop_hint); chosen >= 0;
+       chosen = choose_loop(r.object, request.loop_hint)) {
+    perception::Loop& loop = r.object.loops[chosen];
+    std::vector<servo::ClaspTarget> targets;
+    for (const auto& g : perception::clasp_targets(loop, request.targets, r.hand.closed_aperture))
+      targets.push_back({g.p, g.tangent});
+    if (r.environment.empty() || r.hand.closed_q.size() != model.hand_dof) {
+      r.targets = std::move(targets);
+      return chosen;
+    }
+    const std::vector<bool> room =
+        clasp_room(model, r.hand.closed_q, environment, loop.points, targets);
+    r.targets.clear();
+    for (std::size_t i = 0; i < targets.size(); ++i)
+      if (room[i]) r.targets.push_back(targets[i]);
+    r.statistics.targets_without_room = static_cast<int>(targets.size() - r.targets.size());
+    if (!r.targets.empty()) {
+      if (r.statistics.targets_without_room > 0)
+        say("clasp targets: " + std::to_string(r.statistics.targets_without_room) + " of " +
+            std::to_string(targets.size()) +
+            " dropped: the closed hand there reaches into the environment");
+      return chosen;
+    }
+    say("loop rank " + std::to_string(loop.rank) +
+        ": no room for the hand (the closed hand reaches into the environment at every clasp "
+        "target)");
+    loop.claspable = false;
+    loop.verdict = "no_room";
+    loop.reason =
+        "no room for this hand: the hand closed around the bar reaches into the "
+        "environment at each of the loop's " +
+        std::to_string(targets.size()) + " clasp targets, from all " +
+        std::to_string(kRoomApproaches) + " approach directions";
+    if (request.loop_hint) return -1;
+  }
+  return -1;
+}
+
 }  // namespace
 
 ClaspResult plan_clasp(const ClaspRequest& request) {
@@ -153,35 +197,40 @@ ClaspResult plan_clasp(const ClaspRequest& request) {
   perception.closed_aperture = r.hand.closed_aperture;
   if (request.progress) perception.progress = request.progress;
 
+  r.environment = request.environment;
+  for (const auto& b : r.environment) {
+    if (!b.pose.matrix().allFinite() || !b.size.allFinite() || (b.size.array() <= 0).any())
+      throw InputError(prefix + "an environment box has a non-finite pose or a size <= 0");
+  }
+
+  // The start against the environment and itself before perception (the object comes later).
+  robots::CollisionWorld environment(model);
+  for (const auto& b : r.environment) environment.add_box(b.pose, b.size);
+  robots::CollisionReport contact;
+  const auto start_touches = [&](robots::CollisionWorld& world) {
+    if (world.in_collision(r.start, &contact))
+      throw InputError(prefix + "the start configuration is in collision (" + contact.first +
+                       " with " + contact.second + ")");
+  };
+  start_touches(environment);
+
   say("perceiving the object ...");
   auto t = Clock::now();
   r.object = perception::build_object_model(request.object, perception);
   r.timings.perception = since(t);
-  r.loop = choose_loop(r.object, request.loop_hint);
+  r.loop = choose_loop_with_room(model, request, environment, say, r);
   if (r.loop < 0) {
     r.status = ClaspStatus::kNoClaspableLoop;
     r.reason = no_loop_reason(r.object);
     return r;
   }
   const perception::Loop& loop = r.object.loops[r.loop];
-  for (const auto& g : perception::clasp_targets(loop, request.targets, r.hand.closed_aperture)) {
-    r.targets.push_back({g.p, g.tangent});
-  }
 
   // The scene: the robot, the object's collision mesh and the static environment.
   object_collision_mesh(r.object, loop, perception.workspace, request.name,
                         r.collision_mesh.vertices, r.collision_mesh.triangles);
-  r.environment = request.environment;
-  for (const auto& b : r.environment) {
-    if (!b.pose.matrix().allFinite() || !b.size.allFinite() || (b.size.array() <= 0).any())
-      throw InputError(prefix + "an environment box has a non-finite pose or a size <= 0");
-  }
   robots::CollisionWorld world = make_collision_world(model, r);
-  robots::CollisionReport contact;
-  if (world.in_collision(r.start, &contact)) {
-    throw InputError(prefix + "the start configuration is in collision (" + contact.first +
-                     " with " + contact.second + ")");
-  }
+  start_touches(world);
 
   servo::ClaspController controller(model, loop.points, r.targets, request.controller);
   const double goal_linking =

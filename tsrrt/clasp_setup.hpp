@@ -162,6 +162,9 @@ struct ClaspStatistics {
   int control_steps = 0;     ///< controller steps of the search (kControllerOnly: of the run)
   int clasp_candidates = 0;  ///< goal nodes closed (and verified unless screened)
   int clasp_candidates_screened = 0;  ///< closed hands refused unverified (closed_hand_links)
+  /// Clasp targets dropped before the search: the closed hand there reaches into the environment
+  /// at every approach (clasp_room()).
+  int targets_without_room = 0;
   ConnectOutcomes connect_outcomes;
   int unpruned_waypoints = 0;  ///< of the found path, before pruning
   /// The tree, for pictures: each node's task point and parent, and the solution's nodes.

@@ -136,6 +136,22 @@ TEST(ClaspSetup, NoLoopReasonCountsTheLoopsThatFilledIn) {
   EXPECT_EQ(tsrrt::no_loop_reason(m).find("fill in"), std::string::npos);
 }
 
+// A loop refused for the hand's room passed every other test: its reason comes first, and a
+// reason shared by several loops is said once with their number.
+TEST(ClaspSetup, NoLoopReasonPutsTheHandsRoomFirstAndCountsRepeats) {
+  perception::ObjectModel m;
+  perception::Loop wide, room;
+  wide.verdict = "too_narrow";
+  wide.reason = "too narrow for this hand";
+  wide.hole_width = 0.08;
+  room.verdict = "no_room";
+  room.reason = "no room for this hand";
+  room.hole_width = 0.05;
+  m.loops = {wide, room, room};
+  EXPECT_EQ(tsrrt::no_loop_reason(m),
+            "no claspable loop: no room for this hand (2 loops); too narrow for this hand");
+}
+
 // A closed hand is checked when its fingers keep the tree's tolerance: all of them on average,
 // or all but one for a hand of three fingers or more.
 TEST(ClaspSetup, ClosedHandLinksWhenAllButOneFingerDo) {
