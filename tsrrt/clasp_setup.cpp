@@ -67,7 +67,8 @@ void run_search(const ClaspScene& scene, const Say& say, ClaspResult& r) {
     }
     if (!last.approach.empty())
       say("  clasp candidate " + std::to_string(candidates) +
-          ": closed again after the open hand approached to contact (" +
+          (last.deepened ? ": closed again after the controller went on to the linking goal ("
+                         : ": closed again after the open hand approached to contact (") +
           std::to_string(last.approach.size()) + " steps)");
     say("  clasp candidate " + std::to_string(candidates) + ": fingers closed; verified with " +
         std::to_string(planning.secure.sequences) + " x " +
@@ -309,19 +310,45 @@ ClaspCandidate close_and_check_at(const ClaspScene& scene, const Eigen::VectorXd
 
 }  // namespace
 
+std::vector<Eigen::VectorXd> deepen_to_linking_goal(const ClaspScene& scene, Eigen::VectorXd q) {
+  constexpr int kSteps = 30;
+  std::vector<Eigen::VectorXd> path;
+  servo::ClaspController& controller = scene.controller;
+  controller.forget_direction();
+  servo::TaskState x = controller.project(q);
+  if (x.nearest_target < 0 || x.linking >= scene.goal_linking) return path;
+  const Eigen::Vector3d target = controller.targets()[x.nearest_target].point;
+  for (int s = 0; s < kSteps && x.linking < scene.goal_linking; ++s) {
+    Eigen::VectorXd next = controller.step(q, target, 1.0);
+    if (!scene.world.motion_free(q, next, scene.planning.collision_resolution)) break;
+    q = std::move(next);
+    path.push_back(q);
+    x = controller.project(q);
+  }
+  controller.forget_direction();  // the search's next step starts elsewhere
+  return path;
+}
+
 ClaspCandidate close_and_check(const ClaspScene& scene, const Eigen::VectorXd& q_open,
                                ClaspTimings& timings, bool refuse_unlinked) {
   ClaspCandidate first = close_and_check_at(scene, q_open, timings, refuse_unlinked);
   if (first.check.secure || first.check.timed_out) return first;
-  const auto t = Clock::now();
-  std::vector<Eigen::VectorXd> approach =
-      approach_until_contact(scene.robot, scene.world, q_open, scene.planning.approach);
-  timings.closing += since(t);
-  if (approach.empty()) return first;
-  ClaspCandidate deeper = close_and_check_at(scene, approach.back(), timings, refuse_unlinked);
-  if (!deeper.check.secure) return first;
-  deeper.approach = std::move(approach);
-  return deeper;
+  // Deeper before closing again: straight along the approach to contact, else the controller on
+  // to the hand's linking goal.
+  for (int way = 0; way < 2; ++way) {
+    const auto t = Clock::now();
+    std::vector<Eigen::VectorXd> approach =
+        way == 0 ? approach_until_contact(scene.robot, scene.world, q_open, scene.planning.approach)
+                 : deepen_to_linking_goal(scene, q_open);
+    timings.closing += since(t);
+    if (approach.empty()) continue;
+    ClaspCandidate deeper = close_and_check_at(scene, approach.back(), timings, refuse_unlinked);
+    if (!deeper.check.secure) continue;
+    deeper.approach = std::move(approach);
+    deeper.deepened = way == 1;
+    return deeper;
+  }
+  return first;
 }
 
 robots::CollisionWorld make_collision_world(const robots::RobotModel& robot,

@@ -73,12 +73,20 @@ double closable_tolerance(const ClaspPlanningOptions& planning, double goal_link
 /// paper's goal tolerance ranges from a hand's goal down to 0.65 with the object's shape, Sec. V).
 bool closed_hand_links(const std::vector<double>& finger_linking, double threshold);
 
+/// The controller continued from q toward its nearest clasp target at full linking, each step
+/// collision-free, until the hand's linking goal (scene.goal_linking) or 30 steps: the tree stops
+/// at the lower closable tolerance, where the fingertips have often just crossed the bar. Returns
+/// the poses after q (empty: already at the goal, or the first step was blocked).
+std::vector<Eigen::VectorXd> deepen_to_linking_goal(const ClaspScene& scene, Eigen::VectorXd q);
+
 /// A clasp candidate: the fingers closed at an open pose, and the secure-clasp check of the
 /// closed hand unless it was refused before (closed_hand_links() false at the tree's tolerance).
 struct ClaspCandidate {
-  /// The open hand's straight approach to contact after the open pose, when the fingers closed
-  /// at its end (empty: closed where the tree stopped). The motion is approach, then q_closed.
+  /// The motion on from the open pose when the fingers closed at its end (empty: closed where the
+  /// tree stopped): the open hand's straight approach to contact, or the controller's steps on to
+  /// the hand's linking goal (`deepened`). The motion is approach, then q_closed.
   std::vector<Eigen::VectorXd> approach;
+  bool deepened = false;
   Eigen::VectorXd q_closed;
   double closed_linking = 0.0;  ///< mean |VLk| of the closed hand (eq. 4)
   bool refused = false;         ///< below the tree's tolerance: no check ran
@@ -89,8 +97,10 @@ struct ClaspCandidate {
 /// Closes the fingers at q_open (close_fingers with the scene's options); with `refuse_unlinked`,
 /// refuses a closed hand that no longer links at the tree's tolerance (closed_hand_links,
 /// closable_tolerance), else runs scene.checker. When that gives no secure clasp, the open hand
-/// approaches to contact (approach_until_contact) and the same follows there; the first secure
-/// clasp of the two is returned, else the first attempt. Adds the seconds to timings.closing and
+/// approaches to contact (approach_until_contact) and the same follows there, and failing that,
+/// the controller goes on from the open pose to the hand's linking goal (up to 30 collision-free
+/// steps: the tree stops at the lower closable tolerance) and the same follows there; the first
+/// secure clasp is returned, else the first attempt. Adds the seconds to timings.closing and
 /// timings.verification.
 ClaspCandidate close_and_check(const ClaspScene& scene, const Eigen::VectorXd& q_open,
                                ClaspTimings& timings, bool refuse_unlinked = true);

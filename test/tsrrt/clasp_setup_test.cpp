@@ -136,6 +136,41 @@ TEST(ClaspSetup, NoLoopReasonCountsTheLoopsThatFilledIn) {
   EXPECT_EQ(tsrrt::no_loop_reason(m).find("fill in"), std::string::npos);
 }
 
+// From a pose at the tree's closable tolerance, the controller goes on to the hand's linking goal
+// by collision-free steps toward the same target (the third way close_and_check closes again).
+TEST(ClaspSetup, DeepeningGoesOnToTheLinkingGoal) {
+  tsrrt::ClaspRequest request = request_for(purse());
+  int steps = -1;
+  double closable = 0.0, deepened = 0.0;
+  request.search = [&](const tsrrt::ClaspScene& scene, tsrrt::ClaspResult& r) {
+    servo::ClaspController& c = scene.controller;
+    Eigen::VectorXd q = r.start;
+    servo::TaskState x = c.project(q);
+    const Eigen::Vector3d target = c.targets()[x.nearest_target].point;
+    for (int s = 0; s < 600 && x.linking < 0.65; ++s) {
+      Eigen::VectorXd next = c.step(q, target, 1.0);
+      if (!scene.world.motion_free(q, next, 0.02)) break;
+      q = next;
+      x = c.project(q);
+    }
+    closable = x.linking;
+    const auto path = tsrrt::deepen_to_linking_goal(scene, q);
+    steps = static_cast<int>(path.size());
+    Eigen::VectorXd from = q;
+    for (const auto& p : path) {
+      EXPECT_TRUE(scene.world.motion_free(from, p, scene.planning.collision_resolution));
+      from = p;
+    }
+    deepened = c.project(from).linking;
+  };
+  plan_clasp(request);
+  ASSERT_GE(closable, 0.65) << "the controller alone did not reach the closable tolerance";
+  ASSERT_LT(closable, sdh()->vlink_goal);
+  EXPECT_GT(steps, 0);
+  EXPECT_LE(steps, 30);
+  EXPECT_GT(deepened, closable);
+}
+
 // A loop refused for the hand's room passed every other test: its reason comes first, and a
 // reason shared by several loops is said once with their number.
 TEST(ClaspSetup, NoLoopReasonPutsTheHandsRoomFirstAndCountsRepeats) {
