@@ -243,8 +243,9 @@ std::string sweep_markdown(const std::vector<BenchRecord>& runs) {
   std::ostringstream md;
   md << "\n## Virtual-linking tolerance (paper Sec. V-C, Fig. 8)\n\n"
      << "The tree's goal tolerance set to each value, the first goal node taken (no check in the "
-        "search), the fingers closed (again after an approach to contact when that clasp is "
-        "refused or insecure), then the secure-clasp check.\n\n"
+        "search), the fingers closed (again after an approach to contact, then after the "
+        "controller went on to the linking goal, when that clasp is refused or insecure), then "
+        "the secure-clasp check.\n\n"
      << "| tolerance | runs | goal node reached | median final VLk | lowest final VLk | secure "
         "clasps |\n|---|---|---|---|---|---|\n";
   for (const auto& [tolerance, col] : columns) {
