@@ -136,7 +136,7 @@ int choose_loop_with_room(const robots::RobotModel& model, const ClaspRequest& r
     std::vector<servo::ClaspTarget> targets;
     for (const auto& g : perception::clasp_targets(loop, request.targets, r.hand.closed_aperture))
       targets.push_back({g.p, g.tangent});
-    if (r.environment.empty() || r.hand.closed_q.size() != model.hand_dof) {
+    if (r.environment.empty()) {
       r.targets = std::move(targets);
       return chosen;
     }
@@ -162,7 +162,7 @@ int choose_loop_with_room(const robots::RobotModel& model, const ClaspRequest& r
         "no room for this hand: the hand closed around the bar reaches into the "
         "environment at each of the loop's " +
         std::to_string(targets.size()) + " clasp targets, from all " +
-        std::to_string(kRoomApproaches) + " approach directions";
+        std::to_string(room_approach_angles().size()) + " approach directions";
     if (request.loop_hint) return -1;
   }
   return -1;

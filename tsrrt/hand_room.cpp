@@ -63,12 +63,17 @@ bool FloatingHand::blocked(robots::CollisionWorld& world, const Eigen::Vector3d&
   return true;
 }
 
-std::vector<bool> clasp_room(const robots::RobotModel& model, const Eigen::VectorXd& closed_hand_q,
-                             robots::CollisionWorld& environment, const servo::Points& loop,
-                             const std::vector<servo::ClaspTarget>& targets) {
+std::vector<Eigen::Vector2d> room_approach_angles() {
   std::vector<Eigen::Vector2d> angles = approach_angles();
   const double c = std::cos(M_PI / 8), s = std::sin(M_PI / 8);
   angles.insert(angles.end(), {{c, s}, {c, -s}, {s, c}, {s, -c}});
+  return angles;
+}
+
+std::vector<bool> clasp_room(const robots::RobotModel& model, const Eigen::VectorXd& closed_hand_q,
+                             robots::CollisionWorld& environment, const servo::Points& loop,
+                             const std::vector<servo::ClaspTarget>& targets) {
+  const std::vector<Eigen::Vector2d> angles = room_approach_angles();
   FloatingHand closed(model, closed_hand_q);
   std::vector<bool> out;
   for (const auto& target : targets) {

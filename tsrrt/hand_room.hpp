@@ -35,13 +35,13 @@ class FloatingHand {
   std::vector<Eigen::Isometry3d> in_hand_frame_;  // their poses in the hand frame
 };
 
-/// The approach directions the room is tested at: clasp_approaches()' five (approach_angles())
-/// and ±22.5°, ±67.5° between them.
-constexpr int kRoomApproaches = 9;
+/// The approach angles the room is tested at, each as (cos θ, sin θ): clasp_approaches()' five
+/// (approach_angles()) and ±22.5°, ±67.5° between them.
+std::vector<Eigen::Vector2d> room_approach_angles();
 
 /// For each target: does the hand closed to its linking goal (`closed_hand_q`,
-/// robots::HandSize::closed_q) fit beside `environment` at some of the kRoomApproaches approach
-/// directions, centred on the target or up to 4 cm back along the approach (where verified
+/// robots::HandSize::closed_q) fit beside `environment` at some of the room_approach_angles()
+/// approach directions, centred on the target or up to 4 cm back along the approach (where verified
 /// clasps leave it: 2-4 cm short)? `environment` should hold no object: at the target the hand
 /// is around the object's bar by design.
 std::vector<bool> clasp_room(const robots::RobotModel& model, const Eigen::VectorXd& closed_hand_q,
