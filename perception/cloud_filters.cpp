@@ -239,12 +239,12 @@ namespace {
 // its largest value away is skipped whole: most of the cloud, once the picks are dense.
 class FarthestPoints {
  public:
-  FarthestPoints(const PointCloud& cloud, int start) : cloud_(cloud), value_(cloud.size()) {
+  FarthestPoints(const PointCloud& cloud, int start)
+      : slots_(cloud.size()), slot_of_(cloud.size()) {
     for (std::size_t i = 0; i < cloud.size(); ++i)
-      value_[i] = (cloud[i] - cloud[start]).squaredNorm();
-    order_.resize(cloud.size());
-    std::iota(order_.begin(), order_.end(), 0);
+      slots_[i] = {cloud[i], (cloud[i] - cloud[start]).squaredNorm(), static_cast<int>(i)};
     build(0, static_cast<int>(cloud.size()));
+    for (std::size_t k = 0; k < slots_.size(); ++k) slot_of_[slots_[k].index] = static_cast<int>(k);
   }
 
   /// The point with the largest value (ties: the larger index) and that value.
@@ -252,14 +252,20 @@ class FarthestPoints {
 
   /// Picks point i: its value becomes 0, and every value above its distance to i that distance.
   void pick(int i) {
-    value_[i] = 0.0;
-    update(0, cloud_[i]);
+    slots_[slot_of_[i]].value = 0.0;
+    update(0, slots_[slot_of_[i]].p);
   }
 
  private:
+  // The points are kept in tree order, each leaf's contiguous: a leaf is scanned in sequence.
+  struct Slot {
+    Eigen::Vector3d p;
+    double value;  // squared distance to the nearest pick
+    int index;     // in the cloud
+  };
   struct Node {
     Eigen::Vector3d lo, hi;
-    int begin = 0, end = 0;     // the points order_[begin, end)
+    int begin = 0, end = 0;     // the slots [begin, end)
     int left = -1, right = -1;  // children; -1 for a leaf
     double best = 0.0;
     int best_index = -1;
@@ -268,11 +274,13 @@ class FarthestPoints {
   // (`BM_FarthestPointSampling/10000` 40-42 -> 33-36 ms against leaves of 8).
   static constexpr int kLeaf = 32;
 
+  static bool better(double v, int i, double w, int j) { return v > w || (v == w && i > j); }
+
   int build(int begin, int end) {
     const int index = static_cast<int>(nodes_.size());
     nodes_.emplace_back();
     Eigen::AlignedBox3d box;
-    for (int k = begin; k < end; ++k) box.extend(cloud_[order_[k]]);
+    for (int k = begin; k < end; ++k) box.extend(slots_[k].p);
     nodes_[index].lo = box.min();
     nodes_[index].hi = box.max();
     nodes_[index].begin = begin;
@@ -281,8 +289,8 @@ class FarthestPoints {
       int axis = 0;
       box.sizes().maxCoeff(&axis);
       const int mid = begin + (end - begin) / 2;
-      std::nth_element(order_.begin() + begin, order_.begin() + mid, order_.begin() + end,
-                       [&](int a, int b) { return cloud_[a][axis] < cloud_[b][axis]; });
+      std::nth_element(slots_.begin() + begin, slots_.begin() + mid, slots_.begin() + end,
+                       [&](const Slot& a, const Slot& b) { return a.p[axis] < b.p[axis]; });
       const int left = build(begin, mid);
       const int right = build(mid, end);
       nodes_[index].left = left;
@@ -293,14 +301,12 @@ class FarthestPoints {
   }
 
   void refresh(Node& n) {
-    const auto better = [](double v, int i, double w, int j) { return v > w || (v == w && i > j); };
     n.best = -1.0;
     n.best_index = -1;
     if (n.left < 0) {
-      for (int k = n.begin; k < n.end; ++k) {
-        const int i = order_[k];
-        if (better(value_[i], i, n.best, n.best_index)) n.best = value_[i], n.best_index = i;
-      }
+      for (int k = n.begin; k < n.end; ++k)
+        if (better(slots_[k].value, slots_[k].index, n.best, n.best_index))
+          n.best = slots_[k].value, n.best_index = slots_[k].index;
       return;
     }
     for (const Node* c : {&nodes_[n.left], &nodes_[n.right]})
@@ -318,26 +324,29 @@ class FarthestPoints {
       box += d * d;
     }
     if (box >= n.best) return;
-    if (n.left < 0) {
-      for (int k = n.begin; k < n.end; ++k) {
-        const int j = order_[k];
-        double d2 = 0.0;
-        for (int a = 0; a < 3; ++a) {
-          const double d = p[a] - cloud_[j][a];
-          d2 += d * d;
-        }
-        if (d2 < value_[j]) value_[j] = d2;
-      }
-    } else {
+    if (n.left >= 0) {
       update(n.left, p);
       update(n.right, p);
+      refresh(n);
+      return;
     }
-    refresh(n);
+    // A leaf: its values lowered and its best found in one pass.
+    n.best = -1.0;
+    n.best_index = -1;
+    for (int k = n.begin; k < n.end; ++k) {
+      Slot& s = slots_[k];
+      double d2 = 0.0;
+      for (int a = 0; a < 3; ++a) {
+        const double d = p[a] - s.p[a];
+        d2 += d * d;
+      }
+      if (d2 < s.value) s.value = d2;
+      if (better(s.value, s.index, n.best, n.best_index)) n.best = s.value, n.best_index = s.index;
+    }
   }
 
-  const PointCloud& cloud_;
-  std::vector<double> value_;
-  std::vector<int> order_;
+  std::vector<Slot> slots_;
+  std::vector<int> slot_of_;
   std::vector<Node> nodes_;
 };
 
