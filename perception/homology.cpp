@@ -108,17 +108,20 @@ Annotation annotate(const SimplicialComplex& k, const Graph& g, bool need_annota
   // below kc, so the columns are bucketed by low first (a counting sort) and only each bucket's
   // few columns are compared. The columns are moved into that order, so that the reduction reads
   // them in sequence (reading them through an index was a quarter of this function's time).
-  std::vector<Boundary> columns(k.triangles.size());
+  std::vector<Boundary> columns;  // the non-zero ones (all, unless a triangle repeats an edge)
+  columns.reserve(k.triangles.size());
   {
     std::vector<int> next(kc + 1, 0);
     for (size_t t = 0; t < k.triangles.size(); ++t) {
-      Boundary& b = columns[t];
+      Boundary b;
       b.triangle = static_cast<int>(t);
       for (int e : k.triangles[t])
         if (coord_of[e] >= 0) b.c[b.size++] = coord_of[e];
-      std::sort(b.c.begin(), b.c.begin() + b.size);
-      // Never empty: a triangle's three edges form a cycle, so one is off the spanning forest.
+      if (b.size == 0) continue;
+      for (int i = 1; i < b.size; ++i)  // at most three entries: insertion sort
+        for (int j = i; j > 0 && b.c[j - 1] > b.c[j]; --j) std::swap(b.c[j - 1], b.c[j]);
       ++next[b.low() + 1];
+      columns.push_back(b);
     }
     std::partial_sum(next.begin(), next.end(), next.begin());
     std::vector<Boundary> by_low(columns.size());
@@ -144,28 +147,31 @@ Annotation annotate(const SimplicialComplex& k, const Graph& g, bool need_annota
   // pivots; nearly all the work where K_d is thick went into columns reaching zero (the purse at
   // 40,000 points, K_d': 1.7 M of 1.74 M column additions with only each tetrahedron's last face
   // skipped). Tetrahedra are taken in the order of their last face, so their columns stay short.
-  std::vector<int> position(k.triangles.size());
+  // (A face with a zero column drops out of its tetrahedron's relation.)
+  std::vector<int> position(k.triangles.size(), -1);
   for (size_t i = 0; i < columns.size(); ++i) position[columns[i].triangle] = static_cast<int>(i);
   std::vector<char> dependent(columns.size(), 0);
   {
     std::vector<int> next(columns.size() + 1, 0);
     for (const auto& tet : k.tetrahedra) {
-      int last = 0;
+      int last = -1;
       for (int t : tet) last = std::max(last, position[t]);
-      ++next[last + 1];
+      if (last >= 0) ++next[last + 1];
     }
     std::partial_sum(next.begin(), next.end(), next.begin());
-    std::vector<std::array<int, 4>> faces(k.tetrahedra.size());
+    std::vector<std::array<int, 4>> faces(next.back());
     for (const auto& tet : k.tetrahedra) {
       std::array<int, 4> f;
       for (int q = 0; q < 4; ++q) f[q] = position[tet[q]];
       std::sort(f.begin(), f.end());
-      faces[next[f[3]]++] = f;
+      if (f[3] >= 0) faces[next[f[3]]++] = f;
     }
     Z2Columns tets(columns.size());
     std::vector<int> col;
     for (const auto& f : faces) {
-      col.assign(f.begin(), f.end());
+      col.clear();
+      for (int x : f)
+        if (x >= 0) col.push_back(x);
       const int low = tets.reduce_and_add(col);
       if (low >= 0) dependent[low] = 1;
     }
