@@ -13,6 +13,7 @@
 #include <CGAL/Triangulation_vertex_base_with_info_3.h>
 
 #include "perception/complex.hpp"
+#include "perception/counting_sort.hpp"
 #include "perception/input_error.hpp"
 
 namespace claspplan::perception {
@@ -109,16 +110,11 @@ DelaunayGraph delaunay_3d(const PointCloud& points) {
     unsorted.push_back(v);
   }
   // Sorted: bucketed by lowest vertex (a counting sort), then each bucket's few cells compared.
-  std::vector<std::array<int, 4>> cells(unsorted.size());
-  {
-    std::vector<int> at(n + 1, 0);
-    for (const auto& c : unsorted) ++at[c[0] + 1];
-    for (int v = 0; v < n; ++v) at[v + 1] += at[v];
-    std::vector<int> fill(at.begin(), at.end() - 1);
-    for (const auto& c : unsorted) cells[fill[c[0]]++] = c;
-    for (int v = 0; v < n; ++v)
-      if (at[v + 1] - at[v] > 1) std::sort(cells.begin() + at[v], cells.begin() + at[v + 1]);
-  }
+  std::vector<int> at;
+  std::vector<std::array<int, 4>> cells = detail::sorted_by_key(
+      unsorted, n, [](const std::array<int, 4>& c) { return c[0]; }, &at);
+  for (int v = 0; v < n; ++v)
+    if (at[v + 1] - at[v] > 1) std::sort(cells.begin() + at[v], cells.begin() + at[v + 1]);
   unsorted = {};
   // Each vertex's incident cells, with its place in the cell's sorted vertices.
   std::vector<int> incident_start(n + 1, 0);

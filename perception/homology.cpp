@@ -16,6 +16,7 @@
 #include <unordered_map>
 #include <utility>
 
+#include "perception/counting_sort.hpp"
 #include "perception/homology_graph.hpp"
 #include "perception/input_error.hpp"
 #include "perception/parallel.hpp"
@@ -110,22 +111,20 @@ Annotation annotate(const SimplicialComplex& k, const Graph& g, bool need_annota
   // them in sequence (reading them through an index was a quarter of this function's time).
   std::vector<Boundary> columns;  // the non-zero ones (all, unless a triangle repeats an edge)
   columns.reserve(k.triangles.size());
+  for (size_t t = 0; t < k.triangles.size(); ++t) {
+    Boundary b;
+    b.triangle = static_cast<int>(t);
+    for (int e : k.triangles[t])
+      if (coord_of[e] >= 0) b.c[b.size++] = coord_of[e];
+    if (b.size == 0) continue;
+    for (int i = 1; i < b.size; ++i)  // at most three entries: insertion sort
+      for (int j = i; j > 0 && b.c[j - 1] > b.c[j]; --j) std::swap(b.c[j - 1], b.c[j]);
+    columns.push_back(b);
+  }
   {
-    std::vector<int> next(kc + 1, 0);
-    for (size_t t = 0; t < k.triangles.size(); ++t) {
-      Boundary b;
-      b.triangle = static_cast<int>(t);
-      for (int e : k.triangles[t])
-        if (coord_of[e] >= 0) b.c[b.size++] = coord_of[e];
-      if (b.size == 0) continue;
-      for (int i = 1; i < b.size; ++i)  // at most three entries: insertion sort
-        for (int j = i; j > 0 && b.c[j - 1] > b.c[j]; --j) std::swap(b.c[j - 1], b.c[j]);
-      ++next[b.low() + 1];
-      columns.push_back(b);
-    }
-    std::partial_sum(next.begin(), next.end(), next.begin());
-    std::vector<Boundary> by_low(columns.size());
-    for (const Boundary& b : columns) by_low[next[b.low()]++] = b;
+    std::vector<int> start;
+    columns = detail::sorted_by_key(
+        columns, kc, [](const Boundary& b) { return b.low(); }, &start);
     const auto lexicographic = [](const Boundary& x, const Boundary& y) {
       if (std::lexicographical_compare(x.c.begin(), x.c.begin() + x.size, y.c.begin(),
                                        y.c.begin() + y.size))
@@ -135,11 +134,9 @@ Annotation annotate(const SimplicialComplex& k, const Graph& g, bool need_annota
         return false;
       return x.triangle < y.triangle;
     };
-    // next[l] is now where bucket l + 1 starts.
-    for (int l = 0, begin = 0; l < kc; begin = next[l++])
-      if (next[l] - begin > 1)
-        std::sort(by_low.begin() + begin, by_low.begin() + next[l], lexicographic);
-    columns.swap(by_low);
+    for (int l = 0; l < kc; ++l)
+      if (start[l + 1] - start[l] > 1)
+        std::sort(columns.begin() + start[l], columns.begin() + start[l + 1], lexicographic);
   }
   // Clearing (the "twist" of Chen and Kerber): a tetrahedron's boundary is a 2-cycle, so once the
   // tetrahedra's boundaries are reduced, the lowest triangle of each non-zero reduced column is a
@@ -152,20 +149,16 @@ Annotation annotate(const SimplicialComplex& k, const Graph& g, bool need_annota
   for (size_t i = 0; i < columns.size(); ++i) position[columns[i].triangle] = static_cast<int>(i);
   std::vector<char> dependent(columns.size(), 0);
   {
-    std::vector<int> next(columns.size() + 1, 0);
-    for (const auto& tet : k.tetrahedra) {
-      int last = -1;
-      for (int t : tet) last = std::max(last, position[t]);
-      if (last >= 0) ++next[last + 1];
-    }
-    std::partial_sum(next.begin(), next.end(), next.begin());
-    std::vector<std::array<int, 4>> faces(next.back());
+    std::vector<std::array<int, 4>> faces;
+    faces.reserve(k.tetrahedra.size());
     for (const auto& tet : k.tetrahedra) {
       std::array<int, 4> f;
       for (int q = 0; q < 4; ++q) f[q] = position[tet[q]];
       std::sort(f.begin(), f.end());
-      if (f[3] >= 0) faces[next[f[3]]++] = f;
+      if (f[3] >= 0) faces.push_back(f);
     }
+    faces = detail::sorted_by_key(faces, static_cast<int>(columns.size()),
+                                  [](const std::array<int, 4>& f) { return f[3]; });
     Z2Columns tets(columns.size());
     std::vector<int> col;
     for (const auto& f : faces) {

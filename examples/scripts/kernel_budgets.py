@@ -6,10 +6,9 @@ Usage: examples/scripts/kernel_budgets.py [build/test/claspplan_kernel_bench] [-
 
 Each figure is the median of N runs of its benchmark (default 3; a benchmark that sets its own
 repetitions keeps them). Prints a Markdown table (kernel, budget, measured, ratio) where a ratio
-above 1 is over budget,
-and exits 1 when any kernel is over budget or did not run (2 when the benchmark binary cannot be
-run). Not a
-test: these machines are noisy; run it on a quiet machine and read the ratios.
+above 1 is over budget, and exits 1 when any kernel is over budget or did not run (2 when the
+benchmark binary cannot be run or an option is wrong). Not a test: these machines are noisy; run
+it on a quiet machine and read the ratios.
 """
 import json
 import re
@@ -45,7 +44,8 @@ def run(binary, names, repetitions):
     pattern = "^(" + "|".join(re.escape(n) for n in names) + ")$"
     command = [binary, "--benchmark_filter=" + pattern, "--benchmark_format=json"]
     if repetitions > 1:
-        command += [f"--benchmark_repetitions={repetitions}", "--benchmark_report_aggregates_only=true"]
+        command += [f"--benchmark_repetitions={repetitions}",
+                    "--benchmark_report_aggregates_only=true"]
     try:
         out = subprocess.run(command, check=True, capture_output=True, text=True).stdout
     except (OSError, subprocess.CalledProcessError) as e:
