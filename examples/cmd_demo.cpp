@@ -39,7 +39,7 @@ int run_demo(DemoOptions& o) {
   if (!o.json) {
     std::printf(
         "claspplan demo: %s (the KR5 R850 with a Schunk SDH, a shoulder bag on a table seen "
-        "by two depth cameras: the paper's bag, pose 2, from its committed depth files)\n",
+        "by three depth cameras: the paper's bag, pose 2, from its committed depth files)\n",
         kDemoScenarioName);
   }
   const RunOutcome outcome = run_scenario(scenario, o.run);
@@ -49,7 +49,8 @@ int run_demo(DemoOptions& o) {
   }
   print_run_summary(outcome.summary, /*controller_only=*/false);
   std::printf(
-      "look at clasp_front.png, clasp_side.png, tree.png and poses.png there; the depth "
+      "look at clasp_front.png, clasp_side.png, tree.png, poses.png and sensed.png there; the "
+      "depth "
       "images it planned from are in input/depth/\n");
   return outcome.exit_code;
 }

@@ -20,7 +20,7 @@ namespace {
 
 struct LoopsOptions {
   std::vector<std::string> inputs, cameras, views;
-  std::string crop, png, robot;
+  std::string crop, png, sensed_png, robot;
   int points = 2000;
   double d = 0.0;
   double min_hole = 0.03;
@@ -93,6 +93,17 @@ int run_loops(const LoopsOptions& o) {
     draw_object_model_png(model, o.png);
     progress("loops: wrote " + o.png);
   }
+  if (!o.sensed_png.empty()) {
+    if (!model.sensed)
+      throw InputError(
+          "--sensed-png: no input has a sensor origin (depth views, an organized cloud, a cloud "
+          "with a viewpoint)");
+    const Loop* first = model.loops.empty() ? nullptr : &model.loops.front();
+    draw_sensed_space_png(*model.sensed, first ? first->centre : model.sensed->region().center(),
+                          first ? first->points : std::vector<Eigen::Vector3d>{},
+                          first ? "loop rank 1: " + first->reason : "no loop", o.sensed_png);
+    progress("loops: wrote " + o.sensed_png);
+  }
 
   if (o.json) {
     nlohmann::json loops = nlohmann::json::array();
@@ -136,8 +147,23 @@ int run_loops(const LoopsOptions& o) {
                             {"delaunay", tm.delaunay},
                             {"complex", tm.complex},
                             {"homology", tm.homology},
+                            {"sensed", tm.sensed},
                             {"ranking", tm.ranking}}}};
+    if (model.support_plane) {
+      const Eigen::Vector4d& p = *model.support_plane;
+      out["support_plane"] = {p[0], p[1], p[2], p[3]};
+    }
+    if (model.sensed) {
+      const auto n = model.sensed->counts();
+      const Eigen::AlignedBox3d& box = model.sensed->region();
+      out["sensed"] = {{"resolution", model.sensed->resolution()},
+                       {"region", {vec(box.min()), vec(box.max())}},
+                       {"unknown", n[0]},
+                       {"free", n[1]},
+                       {"occupied", n[2]}};
+    }
     if (!o.png.empty()) out["png"] = o.png;
+    if (!o.sensed_png.empty()) out["sensed_png"] = o.sensed_png;
     if (hand) {
       out["hand"] = {{"robot", o.robot},
                      {"finger_thickness", hand->finger_thickness},
@@ -210,6 +236,9 @@ void add_loops_command(CLI::App& app, Action& action) {
                   "rank the loops for this robot's hand (built-in name or hand-description "
                   "file): holes its fingers pass, bars its closed hand encloses");
   cmd->add_option("--png", o->png, "draw K_d with its loops (best in red) to this PNG");
+  cmd->add_option("--sensed-png", o->sensed_png,
+                  "draw the sensed space (free, occupied, unknown) through the first loop to "
+                  "this PNG");
   cmd->add_flag("--json", o->json, "print one JSON object instead of the summary");
   cmd->callback([o, &action] { action = [o] { return run_loops(*o); }; });
 

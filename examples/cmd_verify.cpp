@@ -1,5 +1,6 @@
-// `claspplan verify RESULT.json [--json]`: the secure-clasp check (paper Sec. V-A) again, on a
-// saved result alone: its robot, final configuration, loop and object collision mesh.
+// `claspplan verify RESULT.json [--json]`: the secure-clasp check again, on a saved result alone
+// (its robot, final configuration, loop and object collision mesh): the paper's random motions
+// (Sec. V-A), then the escape search and the gravity and approach pulls (escape_search.hpp).
 #include <cstdio>
 
 #include "examples/command.hpp"
@@ -7,6 +8,7 @@
 #include "examples/run_scenario.hpp"
 #include "robots/robot_model.hpp"
 #include "tsrrt/clasp_planning.hpp"
+#include "tsrrt/clasp_setup.hpp"
 
 namespace claspplan::cli {
 namespace {
@@ -33,9 +35,15 @@ int run_verify(VerifyOptions o) {
   } else if (v.start_in_collision) {
     std::printf("not secure: the hand already touches the object in the final pose\n");
   } else {
-    std::printf("%s: the object got free in %d of %d sequences of %d random motions\n",
-                v.secure ? "secure" : "not secure", v.escaped_sequences, v.sequences,
-                o.check.motions);
+    std::printf("%s: %s\n", v.secure ? "secure" : "not secure",
+                v.secure ? "no stage freed the object" : tsrrt::insecure_reason(v).c_str());
+    for (const auto& stage : v.stages)
+      std::printf("  %-14s %s (%d %s)\n", stage.name.c_str(),
+                  !stage.ran     ? "not run"
+                  : stage.passed ? "held"
+                                 : "freed the object",
+                  stage.iterations,
+                  stage.name == "random_motions" ? "random motions" : "search iterations");
     std::printf("|Lk| of the open finger curves with the loop: %.3f to %.3f; VLk %.3f to %.3f\n",
                 v.min_open_linking, v.max_open_linking, v.min_virtual_linking,
                 v.max_virtual_linking);

@@ -348,6 +348,7 @@ perception::CameraModel kinect_camera(const Eigen::Vector3d& position,
   c.cx = 319.5;
   c.cy = 239.5;
   c.depth_scale = 0.0002;
+  c.no_reading_is_free = true;  // it renders complete synthetic scenes
   return c;
 }
 

@@ -112,7 +112,8 @@ TriangleMesh ground_plane(double size, double z = 0.0,
                           const Eigen::Vector2d& centre = Eigen::Vector2d::Zero());
 
 /// A Kinect-like 640x480 camera (fx = fy = 525) at `position` looking at `target`, image up
-/// towards world +z, depth_scale 0.0002 m.
+/// towards world +z, depth_scale 0.0002 m; it renders complete synthetic scenes, so a pixel without
+/// a reading saw nothing (no_reading_is_free).
 perception::CameraModel kinect_camera(const Eigen::Vector3d& position,
                                       const Eigen::Vector3d& target);
 

@@ -11,6 +11,7 @@
 #include "examples/scenario.hpp"
 #include "perception/depth_render.hpp"
 #include "perception/file_io.hpp"
+#include "perception/sensed_space.hpp"
 
 namespace claspplan::cli {
 namespace {
@@ -141,10 +142,20 @@ PaperScene paper_scene(const std::string& name) {
   double elevation = 0.7;
   if (object == "chair") elevation = at.pitch != 0.0 || at.roll != 0.0 ? 0.6 : 0.3;
   const double distance = std::max(1.0, 2.6 * object_box.sizes().norm() / 2);
+  // The images cover the workspace and the space around it where the hand moves near the object
+  // (the sensed space's region, perception::SensedSpaceOptions::margin, and 2 cm more).
+  Eigen::AlignedBox3d seen = s.workspace;
+  const Vector3d around = Vector3d::Constant(perception::SensedSpaceOptions().margin + 0.02);
+  seen.min() -= around, seen.max() += around;
   for (double side : {-1.0, 1.0}) {
     const Vector3d dir = Vector3d(-0.35, 0.6 * side, elevation).normalized();
-    s.cameras.push_back(cropped_camera(target + distance * dir, target, s.workspace));
+    s.cameras.push_back(cropped_camera(target + distance * dir, target, seen));
   }
+  // A third from behind, as high as the others: the two in front leave the space behind every bar
+  // that runs across their view unseen (a fin of shadow where the fingertips come out), and the
+  // planner moves the hand only through space a camera saw free (issue 33).
+  const Vector3d behind = Vector3d(0.7, 0.0, elevation).normalized();
+  s.cameras.push_back(cropped_camera(target + distance * behind, target, seen));
   return s;
 }
 

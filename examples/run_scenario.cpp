@@ -9,6 +9,7 @@
 
 #include "examples/command.hpp"
 #include "examples/result_pictures.hpp"
+#include "perception/drawing.hpp"
 #include "tsrrt/clasp_setup.hpp"
 #include "tsrrt/elapsed.hpp"
 
@@ -59,6 +60,7 @@ json outcomes_json(const tsrrt::ConnectOutcomes& o) {
           {"rejected", o.rejected},
           {"contact_object", o.contact_object},
           {"contact_environment", o.contact_environment},
+          {"contact_unseen", o.contact_unseen},
           {"self_collision", o.self_collision},
           {"joint_limits", o.joint_limits},
           {"stall", o.stall},
@@ -199,6 +201,18 @@ RunOutcome run_scenario(const Scenario& scenario, const RunOptions& options) {
   for (const auto& l : r.object.loops)
     loops_json.push_back({{"rank", l.rank}, {"verdict", l.verdict}, {"reason", l.reason}});
   const perception::Loop* loop = r.chosen_loop();
+  if (options.pictures && r.object.sensed) {
+    // Through the chosen loop, else the first refused for what the sensors saw, else the first.
+    const perception::Loop* shown = loop;
+    for (const auto& l : r.object.loops)
+      if (!shown && (l.verdict == "unseen_far_side" || l.verdict == "enclosed")) shown = &l;
+    if (!shown && !r.object.loops.empty()) shown = &r.object.loops.front();
+    perception::draw_sensed_space_png(
+        *r.object.sensed, shown ? shown->centre : r.object.sensed->region().center(),
+        shown ? shown->points : std::vector<Eigen::Vector3d>{},
+        shown ? "loop rank " + std::to_string(shown->rank) + ": " + shown->reason : "no loop",
+        options.out_dir + "/sensed.png");
+  }
   if (!loop) {
     result["success"] = false;
     return finish(kNoAnswer, {{"success", false}, {"verified", false}, {"reason", r.reason}});
@@ -260,6 +274,22 @@ json verification_json(const tsrrt::SecureClaspReport& v) {
             {"max_open_linking", v.max_open_linking},
             {"min_virtual_linking", v.min_virtual_linking},
             {"max_virtual_linking", v.max_virtual_linking}};
+  json stages = json::array();
+  for (const auto& st : v.stages) {
+    json one = {{"name", st.name},
+                {"ran", st.ran},
+                {"passed", st.passed},
+                {"timed_out", st.timed_out},
+                {"iterations", st.iterations}};
+    if (st.escape) {
+      const Eigen::Vector3d t = st.escape->translation();
+      one["escape"] = {{"translation", {t.x(), t.y(), t.z()}},
+                       {"rotation", Eigen::AngleAxisd(st.escape->linear()).angle()}};
+    }
+    stages.push_back(one);
+  }
+  j["stages"] = stages;
+  if (!v.escape_stage.empty()) j["escape_stage"] = v.escape_stage;
   if (v.escape) {  // the first escaping sequence's motion of the object, relative to the hand
     const Eigen::Vector3d t = v.escape->translation();
     j["escape"] = {{"translation", {t.x(), t.y(), t.z()}},

@@ -132,8 +132,18 @@ void read_container_parameters(const Reader& s, objects::Container& c) {
     s.fail("handle_radius", "the handle must fit on the wall (below half the height)");
 }
 
+// A box: {size, position, rpy}.
+EnvironmentBox read_box(const Reader& b) {
+  b.only({"size", "position", "rpy"});
+  EnvironmentBox box;
+  box.size = b.vector3("size", Eigen::Vector3d::Zero());
+  if ((box.size.array() <= 0.0).any()) b.fail("size", "needs three positive lengths");
+  box.pose = b.pose_here();
+  return box;
+}
+
 void read_object(const Reader& r, const fs::path& dir, ObjectSpec& o) {
-  r.only({"depth", "cloud", "mesh", "shape", "pose", "views", "cameras", "noise"});
+  r.only({"depth", "cloud", "mesh", "shape", "pose", "views", "cameras", "noise", "clutter"});
   int sources = 0;
   if (r.has("depth")) {
     ++sources;
@@ -143,7 +153,37 @@ void read_object(const Reader& r, const fs::path& dir, ObjectSpec& o) {
       o.depth.emplace_back(resolve(dir, v.text("image")), resolve(dir, v.text("camera")));
     }
   }
-  if (r.has("cloud")) ++sources, o.cloud = resolve(dir, r.text("cloud"));
+  if (r.has("cloud")) {
+    ++sources;
+    // One file, or a list of files and {file, pose, viewpoint} maps.
+    const YamlField& field = r.field()["cloud"];
+    const std::vector<YamlField> items =
+        field.is_list() ? field.items("file or {file, pose, viewpoint}") : std::vector{field};
+    if (items.empty()) r.fail("cloud", "expected a file or a list of files");
+    for (const YamlField& item : items) {
+      perception::CloudFile file;
+      bool own_pose = false;
+      if (!item.is_map()) {
+        file.path = resolve(dir, item.text(false));
+      } else {
+        const Reader c(item);
+        c.only({"file", "pose", "viewpoint"});
+        if (!c.has("file")) c.fail("", "needs file");
+        file.path = resolve(dir, c.text("file"));
+        if (c.has("pose")) {
+          c.child("pose").only({"position", "rpy"});
+          file.pose = c.child("pose").pose_here();
+          own_pose = true;
+        }
+        if (c.has("viewpoint")) {
+          c.child("viewpoint").only({"position", "rpy"});
+          file.viewpoint = c.child("viewpoint").pose_here();
+        }
+      }
+      o.cloud_pose_given.push_back(own_pose);
+      o.clouds.push_back(file);
+    }
+  }
   if (r.has("mesh")) ++sources, o.mesh = resolve(dir, r.text("mesh"));
   if (r.has("shape")) {
     ++sources;
@@ -174,7 +214,12 @@ void read_object(const Reader& r, const fs::path& dir, ObjectSpec& o) {
     const Reader pose = r.child("pose");
     pose.only({"position", "rpy"});
     o.pose = pose.pose_here();
+    // For clouds: the frame of every file that gives no pose of its own.
+    for (std::size_t i = 0; i < o.clouds.size(); ++i)
+      if (!o.cloud_pose_given[i]) o.clouds[i].pose = o.pose;
   }
+  if (!o.depth.empty() && r.has("pose"))
+    r.fail("pose", "depth images are placed by their camera files' T_world_camera");
   o.views = r.vectors("views");
   if (r.has("cameras")) {
     if (!o.mesh.empty() || o.shape) {
@@ -191,6 +236,10 @@ void read_object(const Reader& r, const fs::path& dir, ObjectSpec& o) {
     }
     if (!o.views.empty()) r.fail("views", "give views or cameras, not both");
   }
+  for (const Reader& b : r.maps("clutter", "{size, position, rpy}", false))
+    o.clutter.push_back(read_box(b));
+  if (!o.clutter.empty() && o.cameras.empty())
+    r.fail("clutter", "other objects are seen by synthetic cameras: give cameras");
   if (r.has("noise")) {
     const Reader n = r.child("noise");
     n.only({"sigma", "dropout"});
@@ -246,14 +295,8 @@ Scenario read_scenario(const YamlField& root, const std::string& path,
   if (r.has("environment")) {
     const Reader env = r.child("environment");
     env.only({"boxes"});
-    for (const Reader& b : env.maps("boxes", "{size, position, rpy}", false)) {
-      b.only({"size", "position", "rpy"});
-      EnvironmentBox box;
-      box.size = b.vector3("size", Eigen::Vector3d::Zero());
-      if ((box.size.array() <= 0.0).any()) b.fail("size", "needs three positive lengths");
-      box.pose = b.pose_here();
-      s.boxes.push_back(box);
-    }
+    for (const Reader& b : env.maps("boxes", "{size, position, rpy}", false))
+      s.boxes.push_back(read_box(b));
   }
 
   const Reader clasp = r.child("clasp");
@@ -377,7 +420,10 @@ perception::PerceptionInputs build_inputs(const Scenario& s) {
     for (const auto& [png, camera] : o.depth) images.push_back(png), cameras.push_back(camera);
     return perception::load_inputs(images, cameras);
   }
-  if (!o.cloud.empty()) return perception::load_inputs({o.cloud}, {});
+  if (!o.clouds.empty()) {
+    for (const auto& file : o.clouds) perception::add_cloud(in, file);
+    return in;
+  }
   perception::TriangleMesh mesh;
   if (!o.mesh.empty()) {
     const perception::PerceptionInputs file = perception::load_inputs({o.mesh}, {});
@@ -406,12 +452,14 @@ perception::PerceptionInputs build_inputs(const Scenario& s) {
   }
   // What a depth camera sees: the object and the environment.
   perception::append_mesh(mesh, boxes_mesh(s.boxes));
+  perception::append_mesh(mesh, boxes_mesh(o.clutter));  // seen, but not told to the planner
   for (std::size_t i = 0; i < o.cameras.size(); ++i) {
     perception::DepthView view;
     view.camera = objects::kinect_camera(o.cameras[i].first, o.cameras[i].second);
     perception::DepthNoise noise = o.noise;
     noise.seed = s.seed * 7919 + i;
     view.image = perception::render_depth(mesh, view.camera, noise);
+    view.camera.no_reading_is_free = true;  // a complete synthetic scene: no reading, nothing there
     in.depth_views.push_back(view);
   }
   return in;

@@ -36,16 +36,21 @@ struct ShapeSpec {
 
 struct ObjectSpec {
   std::vector<std::pair<std::string, std::string>> depth;  ///< (png, camera yaml) pairs
-  std::string cloud;                                       ///< a .pcd/.ply/.xyz file
-  std::string mesh;                                        ///< a mesh file (.obj/.ply/.stl/.off)
-  std::optional<ShapeSpec> shape;                          ///< or a procedural object
-  Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();  ///< of a mesh or shape
+  /// .pcd/.ply/.xyz files with their frames in the world and sensor origins (perception::add_cloud)
+  std::vector<perception::CloudFile> clouds;
+  std::vector<bool> cloud_pose_given;  ///< per cloud: placed by its own `pose` (not the object's)
+  std::string mesh;                    ///< a mesh file (.obj/.ply/.stl/.off)
+  std::optional<ShapeSpec> shape;      ///< or a procedural object
+  Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();  ///< of a mesh, shape or clouds' frame
   /// Sample a mesh or shape only where visible from these camera positions (empty: whole surface).
   std::vector<Eigen::Vector3d> views;
   /// Or see it through synthetic depth cameras: the mesh and the environment boxes are rendered
   /// into depth images (z-buffer, with `noise`), which then go through the depth pipeline.
   std::vector<std::pair<Eigen::Vector3d, Eigen::Vector3d>> cameras;  ///< (position, target)
   perception::DepthNoise noise;
+  /// Other objects beside it (boxes), rendered by the synthetic cameras but not given to the
+  /// planner as environment: it learns of them from the depth images alone.
+  std::vector<tsrrt::EnvironmentBox> clutter;
 };
 
 using EnvironmentBox = tsrrt::EnvironmentBox;  ///< pose (centre) and size

@@ -70,7 +70,14 @@ CameraModel read_camera_yaml(const std::string& path) {
 
 CameraModel parse_camera_yaml(const std::string& text, const std::string& path) {
   const YamlField root = YamlField::parse_map(text, path, "of camera fields");
+  root.only(
+      {"width", "height", "fx", "fy", "cx", "cy", "depth_scale", "T_world_camera", "no_reading"});
   CameraModel c;
+  if (root.has("no_reading")) {
+    const std::string v = root["no_reading"].text(true);
+    if (v != "free" && v != "unknown") root["no_reading"].fail("must be free or unknown");
+    c.no_reading_is_free = v == "free";
+  }
   const auto integer = [&](const char* key) {
     return static_cast<int>(root.required(key).integer(-1000000000, 1000000000));
   };
@@ -119,6 +126,8 @@ void write_camera_yaml(const CameraModel& c, const std::string& path) {
   for (int i = 0; i < 4; ++i) {
     out << "  - [" << M(i, 0) << ", " << M(i, 1) << ", " << M(i, 2) << ", " << M(i, 3) << "]\n";
   }
+  if (c.no_reading_is_free)
+    out << "no_reading: free  # a rendered complete scene: a pixel without a reading saw nothing\n";
   if (!out) throw std::runtime_error(path + ": write failed");
 }
 

@@ -9,6 +9,7 @@
 //   cy: 239.5
 //   depth_scale: 0.0002   # metres per PNG unit; depth is z along the optical axis
 //   T_world_camera: [r00, r01, r02, tx,  r10, r11, r12, ty,  r20, r21, r22, tz,  0, 0, 0, 1]
+//   no_reading: free      # optional: a rendered complete scene (CameraModel::no_reading_is_free)
 // T_world_camera is 4x4 row-major (16 numbers, or 4 rows of 4); the optical frame has z forward,
 // x right, y down. Depth images are 16-bit single-channel PNGs; 0 means "no reading".
 #pragma once
@@ -30,6 +31,12 @@ struct CameraModel {
   double cx = 319.5, cy = 239.5;
   double depth_scale = 0.0002;  ///< metres per PNG unit
   Eigen::Isometry3d T_world_camera = Eigen::Isometry3d::Identity();
+  /// A pixel without a reading saw nothing up to any range: true for a rendering of a complete
+  /// synthetic scene (nothing exists but what was rendered); false for a real sensor, where a
+  /// missing reading may be a dark or shiny surface, the projector's shadow or a far wall, and
+  /// the space along its ray is unknown (sensed_space.hpp). Camera file: `no_reading: free` (or
+  /// `unknown`, the default).
+  bool no_reading_is_free = false;
 
   Eigen::Vector3d position() const { return T_world_camera.translation(); }
   /// Pixel coordinates (u right, v down) and z-depth of a world point; z <= 0 is behind.

@@ -59,6 +59,8 @@ struct PcdHeader {
   std::vector<std::string> fields, types;
   std::vector<long long> sizes, counts;
   long long width = -1, height = 1, points = -1;
+  std::vector<std::string> viewpoint;  // the VIEWPOINT values, unchecked
+  bool has_viewpoint = false;
   std::string data_kind;
   size_t body = 0;  // where the data starts
 };
@@ -104,6 +106,8 @@ PcdHeader read_pcd_header(const std::string& path, const std::string& data) {
     } else if (key == "POINTS") {
       h.points = one_int();
     } else if (key == "VIEWPOINT") {
+      h.viewpoint.assign(tok.begin() + 1, tok.end());
+      h.has_viewpoint = true;
     } else if (key == "DATA") {
       if (tok.size() != 2) fail(path, "malformed DATA line");
       h.data_kind = lower(tok[1]);
@@ -242,22 +246,20 @@ void read_pcd_compressed(const std::string& path, const std::string& data, const
 
 }  // namespace
 
-PointCloud read_pcd(const std::string& path) {
-  return parse_pcd(read_all(path), path);
-}
-
-PointCloud parse_pcd(const std::string& data, const std::string& path) {
+PcdPoints file_io_detail::parse_pcd_points(const std::string& data, const std::string& path) {
   require_data(path, data);
   PcdHeader h = read_pcd_header(path, data);
   check_pcd_header(path, h);
   const PcdLayout layout = pcd_layout(path, h);
-  const bool organized = h.height > 1;
-  PointCloud cloud;
-  cloud.reserve(h.points);
+  PcdPoints out;
+  out.width = h.width;
+  out.height = h.height;
+  out.viewpoint = h.viewpoint;
+  out.has_viewpoint = h.has_viewpoint;
+  out.points.reserve(h.points);
   const AddPoint add = [&](const Eigen::Vector3d& p, long long i) {
-    if (organized && p.hasNaN()) return;  // PCL's "no reading" in organized clouds
-    check_point(path, p, i);
-    cloud.push_back(p);
+    if (!p.hasNaN()) check_point(path, p, i);  // NaN is PCL's "no reading"; infinity is an error
+    out.points.push_back(p);
   };
   if (h.data_kind == "ascii") {
     read_pcd_ascii(path, data, h, layout, add);
@@ -267,6 +269,26 @@ PointCloud parse_pcd(const std::string& data, const std::string& path) {
     read_pcd_compressed(path, data, h, layout, add);
   } else {
     fail(path, "unknown PCD DATA kind '" + h.data_kind + "'");
+  }
+  return out;
+}
+
+PointCloud read_pcd(const std::string& path) {
+  return parse_pcd(read_all(path), path);
+}
+
+PointCloud parse_pcd(const std::string& data, const std::string& path) {
+  PcdPoints pcd = parse_pcd_points(data, path);
+  const bool organized = pcd.height > 1;
+  PointCloud cloud;
+  cloud.reserve(pcd.points.size());
+  for (size_t i = 0; i < pcd.points.size(); ++i) {
+    const Eigen::Vector3d& p = pcd.points[i];
+    if (p.hasNaN()) {
+      if (organized) continue;  // PCL's "no reading" in organized clouds
+      check_point(path, p, static_cast<long long>(i));
+    }
+    cloud.push_back(p);
   }
   if (cloud.empty()) fail(path, "no points");
   return cloud;
@@ -280,6 +302,11 @@ PointCloud read_xyz(const std::string& path) {
 }
 
 PointCloud parse_xyz(const std::string& data, const std::string& path) {
+  return parse_xyz_points(data, path, false);
+}
+
+PointCloud file_io_detail::parse_xyz_points(const std::string& data, const std::string& path,
+                                            bool skip_nan) {
   require_data(path, data);
   Lines lines(data);
   std::string line;
@@ -295,12 +322,13 @@ PointCloud parse_xyz(const std::string& data, const std::string& path) {
     for (int a = 0; a < 3; ++a)
       if (!parse_double(tok[a], p[a]))
         fail(path, "line " + std::to_string(lines.number()) + ": '" + tok[a] + "' is not a number");
+    if (skip_nan && p.hasNaN()) continue;
     if (!p.allFinite())
       fail(path, "line " + std::to_string(lines.number()) + ": NaN or infinite coordinate");
     cloud.push_back(p);
     if (static_cast<long long>(cloud.size()) > kMaxCount) fail(path, "more than 50 million points");
   }
-  if (cloud.empty()) fail(path, "no points (expected lines 'x y z')");
+  if (cloud.empty() && !skip_nan) fail(path, "no points (expected lines 'x y z')");
   return cloud;
 }
 

@@ -172,6 +172,7 @@ std::vector<DepthView> render_views(const TriangleMesh& mesh,
     DepthView view;
     view.camera = look_at_camera(p, target, radius);
     view.image = render_depth(mesh, view.camera);
+    view.camera.no_reading_is_free = true;  // the mesh is the whole scene
     views.push_back(std::move(view));
   }
   return views;

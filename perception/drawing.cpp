@@ -115,4 +115,65 @@ void draw_object_model_png(const ObjectModel& model, const std::string& path, in
   write_png(path, img);
 }
 
+void draw_sensed_space_png(const SensedSpace& space, const Eigen::Vector3d& centre,
+                           const std::vector<Eigen::Vector3d>& loop, const std::string& caption,
+                           const std::string& path) {
+  if (space.empty()) throw std::invalid_argument("sensed space: nothing to draw (no sensor)");
+  constexpr int kPanel = 320, kGap = 10, kTop = 24, kBottom = 56;
+  cv::Mat img(kTop + kPanel + kBottom, 3 * kPanel + 4 * kGap, CV_8UC3, cv::Scalar(255, 255, 255));
+  const Eigen::AlignedBox3d& box = space.region();
+  const double side = box.sizes().maxCoeff();
+  const double scale = kPanel / side;  // pixels per metre, the same in every panel
+  // Each panel: screen x along axis a, screen y down along -b, the slice at centre[c].
+  const std::array<std::array<int, 3>, 3> axes{{{0, 2, 1}, {1, 2, 0}, {0, 1, 2}}};
+  const char* names[] = {"x-z slice (y = %.2f m)", "y-z slice (x = %.2f m)",
+                         "x-y slice (z = %.2f m)"};
+  const cv::Scalar colour[] = {cv::Scalar(60, 150, 245), cv::Scalar(245, 245, 245),
+                               cv::Scalar(120, 50, 20)};  // unknown, free, occupied (BGR)
+  for (int panel = 0; panel < 3; ++panel) {
+    const auto [a, b, c] = axes[panel];
+    const int x0 = kGap + panel * (kPanel + kGap), y0 = kTop;
+    const Eigen::Vector2d lo(box.min()[a], box.min()[b]);
+    for (int py = 0; py < kPanel; ++py)
+      for (int px = 0; px < kPanel; ++px) {
+        Eigen::Vector3d p = centre;
+        p[a] = lo.x() + (px + 0.5) / scale;
+        p[b] = lo.y() + (kPanel - py - 0.5) / scale;
+        cv::Vec3b& out = img.at<cv::Vec3b>(y0 + py, x0 + px);
+        if (!box.contains(p)) {
+          out = cv::Vec3b(200, 200, 200);
+          continue;
+        }
+        const cv::Scalar& k = colour[static_cast<int>(space.at(p))];
+        out =
+            cv::Vec3b(static_cast<uchar>(k[0]), static_cast<uchar>(k[1]), static_cast<uchar>(k[2]));
+      }
+    for (std::size_t i = 0; i < loop.size(); ++i) {
+      const auto screen = [&](const Eigen::Vector3d& q) {
+        return cv::Point(x0 + static_cast<int>((q[a] - lo.x()) * scale),
+                         y0 + kPanel - static_cast<int>((q[b] - lo.y()) * scale));
+      };
+      cv::line(img, screen(loop[i]), screen(loop[(i + 1) % loop.size()]), cv::Scalar(0, 0, 220), 2,
+               cv::LINE_AA);
+    }
+    char buf[96];
+    std::snprintf(buf, sizeof buf, names[panel], centre[c]);
+    cv::putText(img, buf, cv::Point(x0, 17), cv::FONT_HERSHEY_SIMPLEX, 0.45, cv::Scalar(0, 0, 0), 1,
+                cv::LINE_AA);
+  }
+  const auto n = space.counts();
+  const double all = static_cast<double>(n[0] + n[1] + n[2]);
+  char buf[256];
+  std::snprintf(buf, sizeof buf,
+                "free (white) %.0f%%, occupied (blue) %.0f%%, unknown (orange) %.0f%%: %.1f mm "
+                "voxels; grey: outside the object's region (unknown there counts as free)",
+                100.0 * n[1] / all, 100.0 * n[2] / all, 100.0 * n[0] / all,
+                1000.0 * space.resolution());
+  cv::putText(img, buf, cv::Point(kGap, kTop + kPanel + 20), cv::FONT_HERSHEY_SIMPLEX, 0.42,
+              cv::Scalar(0, 0, 0), 1, cv::LINE_AA);
+  cv::putText(img, caption.substr(0, 150), cv::Point(kGap, kTop + kPanel + 42),
+              cv::FONT_HERSHEY_SIMPLEX, 0.42, cv::Scalar(0, 0, 160), 1, cv::LINE_AA);
+  write_png(path, img);
+}
+
 }  // namespace claspplan::perception

@@ -14,4 +14,12 @@ namespace claspplan::perception {
 void draw_object_model_png(const ObjectModel& model, const std::string& path, int width = 900,
                            int height = 700);
 
+/// Draws the sensed map (sensed_space.hpp) in three slices through `centre` (world axes: the
+/// x-z plane, the y-z plane and the x-y plane): free voxels white, occupied dark blue, unknown
+/// orange, outside the region grey; `loop` (optional) in red, projected onto each slice. Throws
+/// std::invalid_argument for an empty map, std::runtime_error if the file cannot be written.
+void draw_sensed_space_png(const SensedSpace& space, const Eigen::Vector3d& centre,
+                           const std::vector<Eigen::Vector3d>& loop, const std::string& caption,
+                           const std::string& path);
+
 }  // namespace claspplan::perception

@@ -9,6 +9,7 @@
 #include <string>
 #include <vector>
 
+#include "perception/file_io.hpp"
 #include "perception/mesh.hpp"
 
 namespace claspplan::perception::file_io_detail {
@@ -87,6 +88,24 @@ void check_point(const std::string& path, const Eigen::Vector3d& p, long long in
 /// Appends a polygon as a triangle fan; fails on fewer than 3 vertices or an index outside [0, nv).
 void fan(std::vector<std::array<int, 3>>& tris, const std::vector<long long>& face, long long nv,
          const std::string& path, long long index);
+
+/// A PCD file's points in file order with NaN points kept (PCL's "no reading"; infinite
+/// coordinates fail), its grid and its VIEWPOINT values when the header has that line (unchecked).
+/// May be empty. The common part of parse_pcd() and parse_sensor_cloud().
+struct PcdPoints {
+  PointCloud points;
+  long long width = 0, height = 1;
+  std::vector<std::string> viewpoint;
+  bool has_viewpoint = false;
+};
+PcdPoints parse_pcd_points(const std::string& data, const std::string& path);
+
+/// parse_xyz(), skipping points with a NaN coordinate when `skip_nan` (then the result may be
+/// empty).
+PointCloud parse_xyz_points(const std::string& data, const std::string& path, bool skip_nan);
+
+/// parse_ply(), keeping vertices with a NaN coordinate when `keep_nan` (infinite ones still fail).
+GeometryFile parse_ply_file(const std::string& data, const std::string& path, bool keep_nan);
 
 /// Writers: an output stream at full double precision; throws std::runtime_error if it cannot be
 /// opened.

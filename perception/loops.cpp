@@ -4,11 +4,13 @@
 #include <cmath>
 #include <cstdio>
 #include <limits>
+#include <optional>
 #include <stdexcept>
 
 #include <Eigen/Eigenvalues>
 
 #include "perception/point_index.hpp"
+#include "perception/sensed_space.hpp"
 
 namespace claspplan::perception {
 
@@ -73,6 +75,15 @@ namespace {
 
 // Room a hand needs beyond a hole, before the table, to curl its fingers (m).
 constexpr double kMinRoom = 0.05;
+// Seen through into known-free space (with a sensed map): the hole itself, away from its rim,
+// must be seen free (kHoleFree of it), and on both sides the space where fingertips come out (a
+// cap of directions within 60 degrees of the passage, twice the hole's width out, 4-10 cm) must be
+// at least kFarSideFree known free. A bar seen from above leaves a thin shadow behind it that may
+// hold more of the bar (the bag's strap, a jug's handle: a 1-2 cm fin just behind the hole), which
+// the cap's share allows for; a container's mouth, a neck, a slit or a gap between objects leads
+// into walls or unknown space all round.
+constexpr double kFarSideMin = 0.04, kFarSideMax = 0.10;
+constexpr double kHoleFree = 0.7, kFarSideFree = 0.5;
 
 // Material on every side of an axis at p (direction u): among the points within `radius` of p
 // and `half` of its cross-section plane (at least 3), no angular gap over 90 degrees.
@@ -210,6 +221,66 @@ void measure_bar(Loop& loop, const PointIndex& index, const std::vector<DepthVie
 }
 
 // `bounds`: the cloud's bounding box (computed once for all loops).
+// What the sensed map says of the space beyond a hole on one side (direction u): a spherical cap
+// of radius `length` (directions within 60 degrees of u) where the fingertips come out. Points
+// outside the map's region count as free (sensed_space.hpp's rule for space far from the object).
+struct FarSide {
+  int free = 0, unknown = 0, occupied = 0;
+  double share_free() const {
+    const int all = free + unknown + occupied;
+    return all > 0 ? static_cast<double>(free) / all : 1.0;
+  }
+};
+
+Sensed robot_view(const SensedSpace& space, const Eigen::Vector3d& q) {
+  return space.region().contains(q) ? space.at(q) : Sensed::kFree;
+}
+
+FarSide far_side(const SensedSpace& space, const Eigen::Vector3d& centre, const Eigen::Vector3d& u,
+                 double length) {
+  FarSide f;
+  const Eigen::Vector3d a = u.unitOrthogonal(), b = u.cross(a);
+  // Rings at 0, 20, 40 and 60 degrees from u, 6 points per 20 degrees of tilt.
+  for (int ring = 0; ring <= 3; ++ring) {
+    const double tilt = ring * M_PI / 9.0;
+    const int count = ring == 0 ? 1 : 6 * ring;
+    for (int k = 0; k < count; ++k) {
+      const double phi = 2.0 * M_PI * k / count;
+      const Eigen::Vector3d d =
+          std::cos(tilt) * u + std::sin(tilt) * (std::cos(phi) * a + std::sin(phi) * b);
+      const Sensed s = robot_view(space, centre + length * d);
+      (s == Sensed::kFree ? f.free : s == Sensed::kOccupied ? f.occupied : f.unknown) += 1;
+    }
+  }
+  return f;
+}
+
+// A camera position from which the hole would be seen through: on its axis, 0.6 m out, on the
+// side whose space was seen (else the upper side), and above the support (a camera under the table
+// is no advice): a side whose position is not 5 cm above it is swapped for the other, and failing
+// both, the position is raised along the support's normal.
+Eigen::Vector3d next_best_view(const Eigen::Vector3d& centre, const Eigen::Vector3d& u,
+                               const FarSide& plus, const FarSide& minus,
+                               const std::optional<Eigen::Vector4d>& support) {
+  constexpr double kDistance = 0.6, kAbove = 0.05;
+  double side = plus.free >= minus.free ? 1.0 : -1.0;
+  if (plus.free == minus.free) side = u.z() >= 0 ? 1.0 : -1.0;
+  Eigen::Vector3d view = centre + side * kDistance * u;
+  if (!support) return view;
+  const Eigen::Vector3d up = support->head<3>().normalized();
+  const double offset = (*support)[3] / support->head<3>().norm();
+  const auto height = [&](const Eigen::Vector3d& p) { return up.dot(p) + offset; };
+  if (height(view) < kAbove) view = centre - side * kDistance * u;
+  if (height(view) < kAbove) view += (kAbove - height(view)) * up;
+  return view;
+}
+
+std::string point_text(const Eigen::Vector3d& p) {
+  char buf[96];
+  std::snprintf(buf, sizeof buf, "(%.2f, %.2f, %.2f)", p.x(), p.y(), p.z());
+  return buf;
+}
+
 void assess(Loop& loop, const PointIndex& index, const Eigen::AlignedBox3d& bounds,
             const std::vector<DepthView>& views, const RankingOptions& options) {
   auto& pts = loop.points;
@@ -326,6 +397,22 @@ void assess(Loop& loop, const PointIndex& index, const Eigen::AlignedBox3d& boun
   const double rho = 0.45 * min_hole;
   const double reach = std::max(2.0 * loop.hole_width, 0.1);
   const double dt = std::max(rho / 2.0, 1e-4);
+  const SensedSpace* sensed = options.sensed && !options.sensed->empty() ? options.sensed : nullptr;
+  const double far_length = std::clamp(2.0 * loop.hole_width, kFarSideMin, kFarSideMax);
+  std::optional<FarSide> closed_side;  // the first line whose far side was not free
+  Eigen::Vector3d closed_view = Eigen::Vector3d::Zero();
+  // The hole itself, away from its rim (voxels near it straddle the bar), seen free?
+  double hole_free = 1.0;
+  if (sensed) {
+    int free = 0, all = 0;
+    for (size_t i = 0; i < samples.size(); ++i) {
+      if (clearance[i] < 0.5 * best) continue;
+      ++all;
+      free += robot_view(*sensed, samples[i]) == Sensed::kFree;
+    }
+    hole_free = all > 0 ? static_cast<double>(free) / all : 0.0;
+  }
+  const bool hole_seen = hole_free >= kHoleFree;
   double blocked_at = 0.0;
   bool surrounded_end = false, passage = false;
   int tilt = 0;  // degrees from the normal of the line that passed
@@ -352,12 +439,52 @@ void assess(Loop& loop, const PointIndex& index, const Eigen::AlignedBox3d& boun
     for (double sgn : {1.0, -1.0})
       ends_open = ends_open && !surrounded(index, loop.centre + sgn * reach * u, u, 1.5 * best,
                                            std::numeric_limits<double>::infinity());
-    if (ends_open) {
-      passage = true;
-      tilt = line.tilt;
-      break;
+    if (!ends_open) {
+      surrounded_end = true;
+      continue;
     }
-    surrounded_end = true;
+    // Seen into known-free space on both sides, where the fingertips come out.
+    if (sensed && hole_seen) {
+      const FarSide plus = far_side(*sensed, loop.centre, u, far_length);
+      const FarSide minus = far_side(*sensed, loop.centre, -u, far_length);
+      if (plus.share_free() < kFarSideFree || minus.share_free() < kFarSideFree) {
+        if (!closed_side) {
+          closed_side = plus.share_free() < minus.share_free() ? plus : minus;
+          closed_view = next_best_view(loop.centre, u, plus, minus, options.support_plane);
+        }
+        continue;
+      }
+    }
+    passage = true;
+    tilt = line.tilt;
+    break;
+  }
+  // A passage whose hole was not seen free, or none whose far sides were: refused, with a view.
+  if (sensed && ((passage && !hole_seen) || (!passage && closed_side))) {
+    std::string what;
+    if (passage) {
+      loop.verdict = "unseen_far_side";
+      what = "never seen through: only " + std::to_string(std::lround(100.0 * hole_free)) +
+             "% of the hole is known free space (a slit in a partly seen wall, or a shadow "
+             "between objects)";
+      closed_view = next_best_view(loop.centre, n, FarSide{}, FarSide{}, options.support_plane);
+    } else {
+      const FarSide& f = *closed_side;
+      const int share = static_cast<int>(std::lround(100.0 * (1.0 - f.share_free())));
+      const std::string beyond =
+          " of the space " + metres(far_length) + " beyond the hole, where fingertips come out, ";
+      loop.verdict = f.occupied > f.unknown ? "enclosed" : "unseen_far_side";
+      what = f.occupied > f.unknown
+                 ? "leads into enclosed space: " + std::to_string(share) + "%" + beyond +
+                       "is measured surface or unseen (a container's mouth, a bowl's or pot's "
+                       "rim)"
+                 : "never seen through: " + std::to_string(share) + "%" + beyond +
+                       "is unknown (a container's mouth or neck, a slit in a partly seen wall, "
+                       "or a shadow between objects)";
+    }
+    loop.reason = what + "; a camera at " + point_text(closed_view) +
+                  " m looking along the hole's axis would see through it";
+    return;
   }
   if (!passage) {
     loop.verdict = "tube_wall";
@@ -367,6 +494,13 @@ void assess(Loop& loop, const PointIndex& index, const Eigen::AlignedBox3d& boun
                       : "loop around a tube wall: material inside the loop (a " + metres(2 * rho) +
                             " probe through it is blocked " + metres(blocked_at) +
                             " from the hole)";
+    return;
+  }
+  if (!sensed && options.sensor_origin_missing) {
+    loop.verdict = "no_sensor_origin";
+    loop.reason =
+        "not known to be a hole: the cloud has no sensor origin, so a hole cannot be told from an "
+        "unseen gap (give the sensor's pose, or a PCD with its VIEWPOINT)";
     return;
   }
   // A passage, not a cavity's opening. Followed downwards until it leaves the object's bounds,

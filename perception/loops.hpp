@@ -15,6 +15,13 @@
 //    every line, or at either end of each free line the points within 1.5 hole radii surround it
 //    (no angular gap over 90 degrees), the loop runs around material (a tube's wall), not around
 //    a hole -> "loop around a tube wall".
+//  - seen through into known-free space (with a sensed map, sensed_space.hpp): along the line that
+//    passed, a finger-wide probe out to twice the hole's width (4-10 cm) on both sides must read
+//    80% known free; else "enclosed" (measured surface beyond the hole: a container's mouth, a
+//    bowl's rim) or "never seen through" (unknown beyond it: a neck, a slit, a shadow between
+//    objects), with a camera position from which the hole would be seen through (a next best
+//    view). Without a sensor origin (a cloud with neither viewpoint nor pose) -> "no sensor
+//    origin": such data cannot tell a hole from an unseen gap.
 //  - through, not into a cavity (with a known supporting plane): followed downwards, the passage
 //    must not meet the support within max(5 cm, two finger thicknesses) -> "blocked by the
 //    support" (a hole lying on the table), nor meet it, inside the object's bounds, after running
@@ -38,6 +45,7 @@
 
 #include "perception/camera.hpp"
 #include "perception/mesh.hpp"
+#include "perception/sensed_space.hpp"
 
 namespace claspplan::perception {
 
@@ -49,7 +57,8 @@ struct Loop {
   bool claspable = false;
   std::string reason;  ///< one line: the verdict and its measure
   /// One word for the verdict: claspable, too_narrow, hand_too_large, occlusion_shadow,
-  /// tube_wall, blocked_by_support, cavity, bar_too_thick, degenerate.
+  /// tube_wall, enclosed, unseen_far_side, no_sensor_origin, blocked_by_support, cavity,
+  /// bar_too_thick, degenerate.
   std::string verdict;
   double hole_width = 0.0;  ///< metres (0 if not measured)
   /// Bar thickness across the loop at kBarSamples equally spaced places (arc length, from the
@@ -99,6 +108,12 @@ struct RankingOptions {
   /// The hand to rank for (robots::HandSize); 0 = no hand: min_hole and no bar test.
   double finger_thickness = 0.0;
   double closed_aperture = 0.0;
+  /// The sensed map of the object's region (sensed_space.hpp), when its inputs had a sensor
+  /// origin: a passage must open into known-free space on both sides of the hole.
+  const SensedSpace* sensed = nullptr;
+  /// Some input had no sensor origin (a cloud without a viewpoint or pose) and nothing else saw the
+  /// space: no hole can be told from an unseen gap, so no loop is claspable.
+  bool sensor_origin_missing = false;
 };
 
 /// Orients the loop (counter-clockwise about the normal with a positive z, else y, else x

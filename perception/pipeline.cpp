@@ -12,6 +12,7 @@
 #include "perception/file_io.hpp"
 #include "perception/input_error.hpp"
 #include "perception/parallel.hpp"
+#include "perception/sensor_cloud.hpp"
 
 namespace claspplan::perception {
 
@@ -67,6 +68,31 @@ std::string fmt(const char* f, double a, double b = 0, double c = 0) {
 
 }  // namespace
 
+void add_cloud(PerceptionInputs& in, const CloudFile& file) {
+  if (!file.pose.matrix().allFinite())
+    throw InputError(file.path + ": the cloud's pose is not finite");
+  SensorCloud cloud = read_sensor_cloud(file.path);
+  if (file.viewpoint) cloud.viewpoint = file.viewpoint;
+  check_metric_units(cloud.valid_points(), file.path);
+  if (cloud.organized()) {
+    in.depth_views.push_back(organized_cloud_view(cloud, file.pose, file.path));
+    return;
+  }
+  PointCloud points = cloud.valid_points();
+  for (auto& p : points) p = file.pose * p;
+  // An unorganized PCD's identity VIEWPOINT is the format's default, written whatever the sensor
+  // was (PCL's writers do): it gives no origin. Only a `viewpoint` given with the file, or a
+  // VIEWPOINT that differs from the default, does.
+  const bool default_viewpoint = !file.viewpoint && cloud.viewpoint &&
+                                 cloud.viewpoint->isApprox(Eigen::Isometry3d::Identity());
+  if (cloud.viewpoint && !default_viewpoint) {
+    in.depth_views.push_back(
+        unorganized_cloud_view(points, file.pose * cloud.viewpoint->translation(), file.path));
+    return;
+  }
+  in.clouds.push_back(std::move(points));
+}
+
 PerceptionInputs load_inputs(const std::vector<std::string>& paths,
                              const std::vector<std::string>& cameras,
                              const std::vector<Eigen::Vector3d>& view_positions) {
@@ -86,17 +112,24 @@ PerceptionInputs load_inputs(const std::vector<std::string>& paths,
       depth_jobs.emplace_back(p, cameras[depth_jobs.size()]);
       continue;
     }
-    GeometryFile g = read_geometry(p);
-    if (g.is_mesh)
-      in.meshes.push_back(std::move(g.mesh));
-    else
-      in.clouds.push_back(std::move(g.cloud));
+    const std::string ext = lower_ext(p);
+    if (ext != ".pcd" && ext != ".xyz") {  // a mesh, or a .ply that may hold either
+      GeometryFile g = read_geometry(p);
+      if (g.is_mesh) {
+        in.meshes.push_back(std::move(g.mesh));
+        continue;
+      }
+    }
+    CloudFile file;
+    file.path = p;
+    add_cloud(in, file);
   }
-  in.depth_views.resize(depth_jobs.size());
+  const std::size_t first = in.depth_views.size();  // after the clouds' views
+  in.depth_views.resize(first + depth_jobs.size());
   parallel_chunks(depth_jobs.size(), 0, [&](std::size_t begin, std::size_t end) {
     for (std::size_t i = begin; i < end; ++i) {
       const auto& [image, camera] = depth_jobs[i];
-      DepthView& v = in.depth_views[i];
+      DepthView& v = in.depth_views[first + i];
       v.camera = read_camera_yaml(camera);
       v.image = read_depth_png(image, v.camera);
       if (v.image.valid_count() == 0)
@@ -123,8 +156,9 @@ Prepared prepare(const PerceptionInputs& in, const PerceptionOptions& o) {
   const int budget = kOversample * n;
   Prepared r;
   PointCloud all;
-  // Depth: back-projection to the world frame, crop, supporting plane, outliers.
-  if (!in.depth_views.empty()) {
+  // Sensor data (depth views, and clouds without a sensor origin after them): back-projection to
+  // the world frame, crop, supporting plane, outliers.
+  if (!in.depth_views.empty() || !in.clouds.empty()) {
     // The support is searched a little below and around the workspace: a crop just above the
     // table must not hide it (loop ranking needs to know where the table is). Points outside
     // that box are never stored.
@@ -152,11 +186,17 @@ Prepared prepare(const PerceptionInputs& in, const PerceptionOptions& o) {
       r.views.push_back(in.depth_views[i]);
     }
     depth.resize(size);
+    for (const auto& c : in.clouds) {
+      validate_cloud(c, "cloud");
+      r.input_points += static_cast<int>(c.size());
+      for (const auto& p : c)
+        if (around.isEmpty() || around.contains(p)) depth.push_back(p);
+    }
     if (r.input_points == 0) throw InputError("the depth images have no reading (all 0)");
     if (!o.workspace.isEmpty() && std::none_of(depth.begin(), depth.end(), [&](const auto& p) {
           return o.workspace.contains(p);
         }))
-      throw InputError("no depth point lies inside the workspace box");
+      throw InputError("no sensed point lies inside the workspace box");
     if (o.remove_plane) {
       PlaneRemovalOptions po;
       po.seed = o.seed;
@@ -167,8 +207,8 @@ Prepared prepare(const PerceptionInputs& in, const PerceptionOptions& o) {
     }
     depth = crop_to_box(depth, o.workspace);
     if (depth.empty())
-      throw InputError(o.remove_plane ? "no depth point above the supporting plane"
-                                      : "no depth point lies inside the workspace box");
+      throw InputError(o.remove_plane ? "no sensed point above the supporting plane"
+                                      : "no sensed point lies inside the workspace box");
     // Evenly over space rather than over pixels: a thin part seen by few pixels keeps its points.
     depth =
         even_subset(random_subset(depth, kDepthPool * n, o.seed), kDepthOversample * n, o.seed + 3);
@@ -176,11 +216,6 @@ Prepared prepare(const PerceptionInputs& in, const PerceptionOptions& o) {
     if (o.outlier_k > 0) depth = remove_statistical_outliers(depth, o.outlier_k, o.outlier_stddev);
     r.outliers = static_cast<int>(before - depth.size());
     all.insert(all.end(), depth.begin(), depth.end());
-  }
-  for (const auto& c : in.clouds) {
-    validate_cloud(c, "cloud");
-    r.input_points += static_cast<int>(c.size());
-    all.insert(all.end(), c.begin(), c.end());
   }
   if (!in.meshes.empty()) {
     TriangleMesh scene;
@@ -281,6 +316,18 @@ ObjectModel build_object_model(const PerceptionInputs& in, const PerceptionOptio
   say(o, fmt("perception: beta1 = %.0f (%.0f Dijkstra roots)", basis.beta1, basis.roots));
 
   t = Clock::now();
+  if (!m.views.empty()) {
+    m.sensed = std::make_shared<const SensedSpace>(
+        m.views, object_region(bounds(m.cloud), o.sensed.margin), o.sensed);
+    const auto n = m.sensed->counts();
+    say(o, fmt("perception: sensed space %.0f%% free, %.0f%% occupied, %.0f%% unknown",
+               100.0 * n[1] / (n[0] + n[1] + n[2]), 100.0 * n[2] / (n[0] + n[1] + n[2]),
+               100.0 * n[0] / (n[0] + n[1] + n[2])));
+  }
+  m.sensor_origin_missing = !in.clouds.empty() && !m.sensed;
+  m.timings.sensed = seconds_since(t);
+
+  t = Clock::now();
   for (const BasisCycle& c : basis.cycles) {
     Loop l;
     l.vertices = c.vertices;
@@ -296,6 +343,8 @@ ObjectModel build_object_model(const PerceptionInputs& in, const PerceptionOptio
   ro.link_distance = m.d;
   ro.finger_thickness = o.finger_thickness;
   ro.closed_aperture = o.closed_aperture;
+  ro.sensed = m.sensed.get();
+  ro.sensor_origin_missing = m.sensor_origin_missing;
   rank_loops(m.loops, m.cloud, m.views, ro);
   if (const Loop* best = m.best()) m.targets = clasp_targets(*best, o.targets, o.closed_aperture);
   m.timings.ranking = seconds_since(t);

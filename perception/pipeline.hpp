@@ -24,6 +24,7 @@
 
 #include <cstdint>
 #include <functional>
+#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
@@ -34,6 +35,7 @@
 #include "perception/input_error.hpp"
 #include "perception/loops.hpp"
 #include "perception/mesh.hpp"
+#include "perception/sensed_space.hpp"
 
 namespace claspplan::perception {
 
@@ -46,8 +48,28 @@ struct PerceptionInputs {
   std::vector<Eigen::Vector3d> view_positions;
 };
 
+/// A cloud file as sensor data (sensor_cloud.hpp).
+struct CloudFile {
+  std::string path;
+  /// The cloud's frame in the world (for a cloud in its sensor's frame: the sensor's pose).
+  Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();
+  /// The sensor's pose in the cloud's frame: replaces a PCD's VIEWPOINT, and is the only sensor
+  /// origin a .ply or .xyz cloud can have.
+  std::optional<Eigen::Isometry3d> viewpoint;
+};
+
+/// Adds a cloud file to the inputs as what its sensor saw: an organized PCD as its own depth view
+/// (its camera fitted to its grid), a cloud with a sensor origin (`viewpoint`, or a PCD VIEWPOINT
+/// other than the format's default identity, which writers put in whatever the sensor was) as a
+/// synthetic depth view from that origin, so that the depth stages and the sensed space apply; a
+/// cloud without an origin as plain points that still go through the crop, plane and outlier
+/// stages (its loops cannot be seen through: loops.hpp). NaN points are skipped. Throws
+/// InputError for a bad file or one in millimetres.
+void add_cloud(PerceptionInputs& inputs, const CloudFile& file);
+
 /// Reads inputs by extension: `.png` files pair, in order, with `cameras` (one camera file per
-/// PNG); `.pcd .xyz` are clouds, `.obj .stl .off` meshes, `.ply` either. Throws
+/// PNG); `.pcd .xyz` are clouds (add_cloud, in the world frame), `.obj .stl .off` meshes, `.ply`
+/// either. Throws
 /// InputError for a count mismatch or any bad file.
 PerceptionInputs load_inputs(const std::vector<std::string>& paths,
                              const std::vector<std::string>& cameras,
@@ -75,13 +97,15 @@ struct PerceptionOptions {
   double finger_thickness = 0.0;
   double closed_aperture = 0.0;
   HomologyOptions homology;
+  /// The sensed map of the object's region, cast from the depth views (sensed_space.hpp).
+  SensedSpaceOptions sensed;
   /// Optional progress messages for long steps (the CLI prints them on stderr).
   std::function<void(const std::string&)> progress;
 };
 
 struct PerceptionTimings {
-  double preprocess = 0, downsample = 0, delaunay = 0, complex = 0, homology = 0, ranking = 0,
-         total = 0;  ///< seconds
+  double preprocess = 0, downsample = 0, delaunay = 0, complex = 0, homology = 0, sensed = 0,
+         ranking = 0, total = 0;  ///< seconds
 };
 
 /// The object representation (S, K_d, G) of paper Sec. IV-A, plus what it was made from.
@@ -97,7 +121,11 @@ struct ObjectModel {
   std::vector<Loop> loops;           ///< the stable ones, ranked, best first
   std::vector<ClaspTarget> targets;  ///< on loops[0] if it is claspable, else empty
   std::vector<DepthView> views;      ///< cameras used by the occlusion test
-  int input_points = 0;              ///< points before down-sampling
+  /// What the views saw of the object's region (free, occupied, unknown); null without views.
+  std::shared_ptr<const SensedSpace> sensed;
+  /// Some input had no sensor origin and no view saw the space (RankingOptions).
+  bool sensor_origin_missing = false;
+  int input_points = 0;  ///< points before down-sampling
   int plane_points_removed = 0;
   std::optional<Eigen::Vector4d> support_plane;  ///< the removed supporting plane, n up
   int outliers_removed = 0;

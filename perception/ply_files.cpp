@@ -194,6 +194,7 @@ void check_ply_counts(const std::string& path, const std::string& data, const Pl
 
 // What the data holds: the vertices and the faces fanned into triangles.
 struct PlyData {
+  bool keep_nan = false;
   PointCloud points;
   std::vector<std::array<int, 3>> triangles;
 };
@@ -233,7 +234,7 @@ void read_ply_binary(const std::string& path, const std::string& data, const Ply
       }
       if (&e == g.vertex) {
         const Eigen::Vector3d v(values[g.ix[0]], values[g.ix[1]], values[g.ix[2]]);
-        check_point(path, v, i);
+        if (!(out.keep_nan && v.hasNaN())) check_point(path, v, i);
         out.points.push_back(v);
       }
     }
@@ -272,7 +273,7 @@ void read_ply_ascii(const std::string& path, const std::string& data, const PlyH
       }
       if (&e == g.vertex) {
         const Eigen::Vector3d v(values[g.ix[0]], values[g.ix[1]], values[g.ix[2]]);
-        check_point(path, v, i);
+        if (!(out.keep_nan && v.hasNaN())) check_point(path, v, i);
         out.points.push_back(v);
       }
     }
@@ -286,11 +287,17 @@ GeometryFile read_ply(const std::string& path) {
 }
 
 GeometryFile parse_ply(const std::string& data, const std::string& path) {
+  return parse_ply_file(data, path, false);
+}
+
+GeometryFile file_io_detail::parse_ply_file(const std::string& data, const std::string& path,
+                                            bool keep_nan) {
   require_data(path, data);
   const PlyHeader h = read_ply_header(path, data);
   const PlyGeometry g = find_ply_geometry(path, h);
   check_ply_counts(path, data, h);
   PlyData d;
+  d.keep_nan = keep_nan;
   d.points.reserve(g.vertex->count);
   if (h.format != "ascii")
     read_ply_binary(path, data, h, g, d);

@@ -6,6 +6,7 @@
 #include <stdexcept>
 
 #include <fcl/geometry/bvh/BVH_model.h>
+#include <fcl/geometry/octree/octree.h>
 #include <fcl/geometry/shape/box.h>
 #include <fcl/geometry/shape/capsule.h>
 #include <fcl/geometry/shape/cylinder.h>
@@ -14,6 +15,7 @@
 #include <fcl/math/bv/OBBRSS.h>
 #include <fcl/narrowphase/collision.h>
 #include <fcl/narrowphase/distance.h>
+#include <octomap/OcTree.h>
 
 #include "robots/triangle_tree.hpp"
 
@@ -422,6 +424,29 @@ int CollisionWorld::add_cylinder(const Eigen::Isometry3d& pose, double radius, d
                                 std::make_shared<fcl::Cylinderd>(radius, length), pose,
                                 p.bounds(pose)});
   return index;
+}
+
+void CollisionWorld::add_voxels(const std::vector<Eigen::Vector3d>& centres, double edge) {
+  if (!(edge > 0) || !std::isfinite(edge))
+    throw std::invalid_argument("environment voxels: the edge must be finite and > 0");
+  if (centres.empty()) return;
+  auto tree = std::make_shared<octomap::OcTree>(edge);
+  Eigen::AlignedBox3d bounds;
+  for (const auto& c : centres) {
+    if (!c.allFinite()) throw std::invalid_argument("environment voxels: a centre is not finite");
+    // The node's log-odds set at once (no sensor model: these voxels are occupied by rule).
+    tree->setNodeValue(octomap::point3d(static_cast<float>(c.x()), static_cast<float>(c.y()),
+                                        static_cast<float>(c.z())),
+                       tree->getClampingThresMaxLog(), /*lazy_eval=*/true);
+    bounds.extend(c);
+  }
+  tree->updateInnerOccupancy();
+  tree->prune();  // uniform blocks of 8 become one node: fewer nodes for FCL to visit
+  const Eigen::Vector3d half = Eigen::Vector3d::Constant(0.5 * edge);
+  impl_->environment.push_back(
+      {"unseen space",
+       std::make_shared<fcl::OcTreed>(std::shared_ptr<const octomap::OcTree>(std::move(tree))),
+       Eigen::Isometry3d::Identity(), Box3{bounds.min() - half, bounds.max() + half}});
 }
 
 void CollisionWorld::clear_environment() {

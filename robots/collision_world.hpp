@@ -2,7 +2,8 @@
 //
 // - Robot: the links' primitives (boxes, spheres, cylinders, capsules) from the URDF.
 // - Object: a triangle mesh (the K_d triangles) as an FCL BVH (OBBRSS) with a movable pose.
-// - Environment: static boxes and cylinders (table, walls, obstacles).
+// - Environment: static boxes and cylinders (table, walls, obstacles), and voxels of space no
+//   sensor saw near the object (an OcTree).
 // - Self-collision: every pair of links except (a) adjacent links: a link and its nearest ancestor
 //   that has collision geometry (links without geometry are skipped, so the palm is adjacent to
 //   link_6 through flange/tool0), (b) pairs whose relative pose does not depend on q (e.g. the
@@ -85,6 +86,12 @@ class CollisionWorld {
   int add_box(const Eigen::Isometry3d& pose, const Eigen::Vector3d& size);
   /// A cylinder along the pose's z axis, centred at pose. Returns its index among the cylinders.
   int add_cylinder(const Eigen::Isometry3d& pose, double radius, double length);
+  /// Cubes of edge `edge` centred at `centres` that the robot must not enter (the sensed
+  /// space's unseen voxels near the object: perception/sensed_space.hpp), held as an OctoMap
+  /// OcTree that FCL collides against; reported as "unseen space". Centres should lie on a grid
+  /// of spacing `edge` aligned with multiples of it (as SensedSpace's are). Throws
+  /// std::invalid_argument for a non-finite centre or edge <= 0. Nothing is added for no centres.
+  void add_voxels(const std::vector<Eigen::Vector3d>& centres, double edge);
   void clear_environment();
 
   // --- Options

@@ -58,6 +58,7 @@ MotionCheck ClaspProblem::check_motion(const Eigen::VectorXd& q0, const Eigen::V
   if (world_.motion_free(q0, q1, resolution_, &report)) return MotionCheck::kFree;
   if (report.second == "object") return MotionCheck::kObject;
   if (report.second_link >= 0) return MotionCheck::kSelf;
+  if (report.second == "unseen space") return MotionCheck::kUnseen;
   return MotionCheck::kEnvironment;  // "box <i>", "cylinder <i>"
 }
 

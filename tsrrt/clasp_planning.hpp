@@ -15,6 +15,7 @@
 
 #include "robots/collision_world.hpp"
 #include "servo/clasp_controller.hpp"
+#include "tsrrt/escape_search.hpp"
 #include "tsrrt/planner.hpp"
 #include "tsrrt/problem.hpp"
 
@@ -138,6 +139,12 @@ struct SecureClaspOptions {
   int threads = 0;
   /// Give up (not secure, timed_out) once this passes; none by default.
   std::optional<std::chrono::steady_clock::time_point> deadline;
+  /// After the random motions pass: the escape stages (escape_search.hpp), an RRT-Connect escape
+  /// search and the energy-bounded gravity and approach pulls. Random motions accept hooks.
+  bool escape_stages = true;
+  /// Their budgets and goal; their seed, deadline, translation_step and rotation_step are this
+  /// check's (the fields above), whatever `escape` holds.
+  EscapeSearchOptions escape;
 };
 
 struct SecureClaspReport {
@@ -151,6 +158,13 @@ struct SecureClaspReport {
   /// Where the object got free: its motion relative to the closed hand in the first escaping
   /// sequence (in sequence order), at the end of its escaping motion.
   std::optional<Eigen::Isometry3d> escape;
+  /// The stage that freed the object ("random_motions", "escape_search", "gravity", "approach"),
+  /// whose pose `escape` is; empty when none did.
+  std::string escape_stage;
+  /// Every stage in order: random_motions, then (with escape_stages) escape_search, gravity,
+  /// approach; the stages after one that freed the object or timed out did not run. Empty when
+  /// the check could not run (start_in_collision).
+  std::vector<VerificationStage> stages;
   /// At the final pose (paper Fig. 6): |Lk| of each open finger curve with the loop, and VLk.
   std::vector<double> open_linking;
   std::vector<double> virtual_linking;
@@ -177,6 +191,8 @@ void loop_tube(const servo::Points& loop, double radius, std::vector<Eigen::Vect
 /// object's own weight. Sequences advance together in rounds (25, 100, 400, ... motions) and the
 /// check stops after the first round in which one escapes: `escaped_sequences` counts the escapes
 /// up to then, `escape_motion` is the escaping motion of the first such sequence (by index).
+/// When they pass and options.escape_stages is on, the escape stages run in order (see
+/// SecureClaspOptions::escape) until one frees the object: secure only if every stage holds.
 SecureClaspReport check_secure_clasp(const robots::RobotModel& model,
                                      const std::vector<Eigen::Vector3d>& object_vertices,
                                      const std::vector<Eigen::Vector3i>& object_triangles,

@@ -2,12 +2,14 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <numeric>
 #include <stdexcept>
 #include <utility>
 
 #include "perception/input_error.hpp"
 #include "perception/mesh.hpp"
+#include "robots/kinematics.hpp"
 #include "tsrrt/clasp_scene.hpp"
 #include "tsrrt/elapsed.hpp"
 #include "tsrrt/hand_room.hpp"
@@ -79,9 +81,8 @@ void run_search(const ClaspScene& scene, const Say& say, ClaspResult& r) {
     } else if (check.start_in_collision) {
       say("  rejected: the closed hand touches the object");
     } else if (!check.secure) {
-      say("  rejected: the object got free in " + std::to_string(check.escaped_sequences) + " of " +
-          std::to_string(check.sequences) + " sequences" +
-          (last.screened_out ? " of the screening (the full check's first motions)" : ""));
+      say("  rejected: " + insecure_reason(check) +
+          (last.screened_out ? " (in the screening: the full check's first motions)" : ""));
     }
     return check.secure || !planning.verify_in_search;
   };
@@ -119,10 +120,51 @@ void run_search(const ClaspScene& scene, const Say& say, ClaspResult& r) {
   for (const auto& q : last.approach) r.motion.waypoints.push_back(q);
   if (last.q_closed != r.motion.waypoints.back()) r.motion.waypoints.push_back(last.q_closed);
   r.success = r.verified = check.secure;
-  r.reason = check.secure ? "verified clasp"
-                          : "the clasp failed verification: the object got free in " +
-                                std::to_string(check.escaped_sequences) + " of " +
-                                std::to_string(check.sequences) + " sequences";
+  r.reason =
+      check.secure ? "verified clasp" : "the clasp failed verification: " + insecure_reason(check);
+}
+
+// Distance from p to a collision shape placed at `pose` (0 inside).
+double shape_distance(const robots::CollisionShape& s, const Eigen::Isometry3d& pose,
+                      const Eigen::Vector3d& p) {
+  const Eigen::Vector3d local = pose.inverse() * p;
+  using Type = robots::CollisionShape::Type;
+  switch (s.type) {
+    case Type::kBox:
+      return (local.cwiseAbs() - 0.5 * s.size).cwiseMax(0.0).norm();
+    case Type::kSphere:
+      return std::max(0.0, local.norm() - s.radius);
+    case Type::kCapsule: {
+      const double z = std::clamp(local.z(), -0.5 * s.length, 0.5 * s.length);
+      return std::max(0.0, (local - Eigen::Vector3d(0, 0, z)).norm() - s.radius);
+    }
+    case Type::kCylinder: {
+      const double radial = std::max(0.0, local.head<2>().norm() - s.radius);
+      const double axial = std::max(0.0, std::abs(local.z()) - 0.5 * s.length);
+      return std::hypot(radial, axial);
+    }
+  }
+  return 0.0;
+}
+
+// The unseen voxels less those the robot itself fills at its start: a camera sees the robot there,
+// not what lies behind it, and a real system masks the robot out of its depth images (a
+// self-filter); nothing of the object can be where the robot stands.
+std::vector<Eigen::Vector3d> without_robot(const robots::RobotModel& model,
+                                           const Eigen::VectorXd& start,
+                                           std::vector<Eigen::Vector3d> voxels, double edge) {
+  robots::RobotData data(model);
+  robots::forward_kinematics(model, start, data);
+  const double reach = 0.5 * std::sqrt(3.0) * edge;  // a voxel within this may touch the shape
+  std::vector<Eigen::Isometry3d> poses;
+  for (const auto& s : model.shapes) poses.push_back(data.link_poses[s.link] * s.origin);
+  const auto filled = [&](const Eigen::Vector3d& c) {
+    for (std::size_t k = 0; k < model.shapes.size(); ++k)
+      if (shape_distance(model.shapes[k], poses[k], c) <= reach) return true;
+    return false;
+  };
+  voxels.erase(std::remove_if(voxels.begin(), voxels.end(), filled), voxels.end());
+  return voxels;
 }
 
 // The loop to clasp and its targets. The clasp targets of a loop where the closed hand reaches
@@ -227,7 +269,13 @@ ClaspResult plan_clasp(const ClaspRequest& request) {
   }
   const perception::Loop& loop = r.object.loops[r.loop];
 
-  // The scene: the robot, the object's collision mesh and the static environment.
+  // The scene: the robot, the object's collision mesh, the static environment and the space near
+  // the object that no sensor saw (unknown is occupied there: sensed_space.hpp).
+  if (r.object.sensed) {
+    r.unseen_edge = r.object.sensed->resolution();
+    r.unseen_voxels = without_robot(
+        model, r.start, r.object.sensed->blocked_voxels(r.object.support_plane), r.unseen_edge);
+  }
   object_collision_mesh(r.object, loop, perception.workspace, request.name,
                         r.collision_mesh.vertices, r.collision_mesh.triangles);
   robots::CollisionWorld world = make_collision_world(model, r);
@@ -268,6 +316,18 @@ ClaspResult plan_clasp(const ClaspRequest& request) {
   r.final_state.finger_virtual_linking = final_state.finger_linking;
   r.final_state.finger_open_linking = open_finger_linking(model, r.motion.final_q, loop.points);
   return r;
+}
+
+std::string insecure_reason(const SecureClaspReport& check) {
+  if (check.timed_out) return "the time limit ended the check";
+  if (check.start_in_collision) return "the closed hand touches the object";
+  if (check.escape_stage.empty() || check.escape_stage == "random_motions")
+    return "the object got free in " + std::to_string(check.escaped_sequences) + " of " +
+           std::to_string(check.sequences) + " sequences of random motions";
+  if (check.escape_stage == "escape_search")
+    return "the escape search found a way out for the object (random motions held it)";
+  return "the object got free under the " + check.escape_stage +
+         " pull without rising against it (random motions held it)";
 }
 
 double closable_tolerance(const ClaspPlanningOptions& planning, double goal_linking) {
@@ -356,6 +416,7 @@ robots::CollisionWorld make_collision_world(const robots::RobotModel& robot,
   robots::CollisionWorld world(robot);
   world.set_object(result.collision_mesh.vertices, result.collision_mesh.triangles);
   for (const auto& b : result.environment) world.add_box(b.pose, b.size);
+  if (!result.unseen_voxels.empty()) world.add_voxels(result.unseen_voxels, result.unseen_edge);
   return world;
 }
 

@@ -63,6 +63,10 @@ struct ClaspScene {
   const ClaspPlanningOptions& planning;  ///< closing, check, seed and limits
 };
 
+/// Why a clasp check did not pass, in one line: the stage that freed the object (random motions,
+/// escape search, a pull), the time limit, or a hand that already touches the object.
+std::string insecure_reason(const SecureClaspReport& check);
+
 /// The tree's goal tolerance (mean |VLk|): closable_linking, at most the goal; the goal itself
 /// when closable_linking is 0.
 double closable_tolerance(const ClaspPlanningOptions& planning, double goal_linking);
@@ -217,6 +221,11 @@ struct ClaspResult {
   std::vector<servo::ClaspTarget> targets;  ///< on the chosen loop
   CollisionMesh collision_mesh;             ///< object surface and the loop's tube
   std::vector<EnvironmentBox> environment;
+  /// Space near the object that no sensor saw (perception::SensedSpace::blocked_voxels(): unknown
+  /// voxels, and the support's below its surface): cubes of edge unseen_edge the robot must not
+  /// enter. Empty without a sensed map (a mesh, or a cloud without a sensor origin).
+  std::vector<Eigen::Vector3d> unseen_voxels;
+  double unseen_edge = 0.0;
 
   ClaspMotion motion;
   ClaspTaskState final_state;  ///< when motion.waypoints is not empty
@@ -235,8 +244,8 @@ struct ClaspResult {
 /// object without a surface to collide with.
 ClaspResult plan_clasp(const ClaspRequest& request);
 
-/// The collision world a result's motion was checked in: the robot, the result's collision mesh
-/// and environment.
+/// The collision world a result's motion was checked in: the robot, the result's collision mesh,
+/// environment and unseen voxels.
 robots::CollisionWorld make_collision_world(const robots::RobotModel& robot,
                                             const ClaspResult& result);
 

@@ -20,6 +20,7 @@ enum class Ending {
   kRejected,
   kObject,
   kEnvironment,
+  kUnseen,
   kSelf,
   kJointLimits,
   kStall,
@@ -37,6 +38,8 @@ int& counter(ConnectOutcomes& o, Ending e) {
       return o.contact_object;
     case Ending::kEnvironment:
       return o.contact_environment;
+    case Ending::kUnseen:
+      return o.contact_unseen;
     case Ending::kSelf:
       return o.self_collision;
     case Ending::kJointLimits:
@@ -55,6 +58,8 @@ Ending collision_ending(MotionCheck c) {
   switch (c) {
     case MotionCheck::kEnvironment:
       return Ending::kEnvironment;
+    case MotionCheck::kUnseen:
+      return Ending::kUnseen;
     case MotionCheck::kSelf:
       return Ending::kSelf;
     default:
@@ -77,6 +82,7 @@ std::string describe(const ConnectOutcomes& o) {
   const std::pair<int, const char*> endings[] = {
       {o.contact_object, "ended in contact with the object"},
       {o.contact_environment, "ended in contact with the environment"},
+      {o.contact_unseen, "ran into space no sensor saw"},
       {o.self_collision, "ended in self-collision"},
       {o.joint_limits, "ended at the joint limits"},
       {o.stall, "stopped making progress"},
@@ -91,7 +97,7 @@ std::string describe(const ConnectOutcomes& o) {
     text += o.attempts == 1 ? "; it " : "; most ";
     text += main->second + std::string(" (") + std::to_string(main->first) + ")";
   }
-  if (o.rejected > 0 && main->second != endings[5].second) {
+  if (o.rejected > 0 && main->second != endings[6].second) {
     text += "; " + std::to_string(o.rejected) + " reached the goal but were rejected";
   }
   text += "; " + std::to_string(o.detours) + (o.detours == 1 ? " detour" : " detours");

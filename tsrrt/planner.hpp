@@ -58,6 +58,7 @@ struct ConnectOutcomes {
   int rejected = 0;             ///< goal reached, but PlanningProblem::accept() refused it
   int contact_object = 0;       ///< the next step touched the object
   int contact_environment = 0;  ///< ... the static environment
+  int contact_unseen = 0;       ///< ... space near the object that no sensor saw
   int self_collision = 0;       ///< ... the robot itself
   int joint_limits = 0;         ///< no progress while the controller held joints at their limits
   int stall = 0;                ///< no progress otherwise (stall_steps steps)
@@ -73,8 +74,8 @@ struct ConnectOutcomes {
 
   /// The sum of the endings (equals `attempts`).
   int endings() const {
-    return accepted + rejected + contact_object + contact_environment + self_collision +
-           joint_limits + stall + step_cap + time_limit;
+    return accepted + rejected + contact_object + contact_environment + contact_unseen +
+           self_collision + joint_limits + stall + step_cap + time_limit;
   }
 };
 

@@ -24,6 +24,7 @@ enum class MotionCheck {
   kFree,         ///< collision-free
   kObject,       ///< the robot touches the object (to be clasped)
   kEnvironment,  ///< the robot touches the static environment (table, walls, obstacles)
+  kUnseen,       ///< the robot enters space near the object that no sensor saw
   kSelf,         ///< the robot touches itself
 };
 

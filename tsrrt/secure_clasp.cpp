@@ -8,6 +8,7 @@
 //   report does not depend on the number of threads.
 #include <algorithm>
 #include <atomic>
+#include <chrono>
 #include <cmath>
 #include <exception>
 #include <limits>
@@ -30,17 +31,8 @@ double point_segment_distance(const Eigen::Vector3d& p, const Eigen::Vector3d& a
   return (a + t * ab - p).norm();
 }
 
-// Smallest distance from the loop's vertices to the finger curves' segments.
-double loop_hand_distance(const servo::Points& loop, const Curves& curves) {
-  double best = std::numeric_limits<double>::infinity();
-  for (const auto& curve : curves)
-    for (std::size_t i = 0; i + 1 < curve.size(); ++i)
-      for (const auto& p : loop)
-        best = std::min(best, point_segment_distance(p, curve[i], curve[i + 1]));
-  return best;
-}
+}  // namespace
 
-// A uniformly distributed unit vector, by rejection from the cube (platform-independent).
 Eigen::Vector3d random_unit(std::mt19937_64& rng) {
   for (;;) {
     const Eigen::Vector3d v(2.0 * uniform01(rng()) - 1.0, 2.0 * uniform01(rng()) - 1.0,
@@ -50,7 +42,14 @@ Eigen::Vector3d random_unit(std::mt19937_64& rng) {
   }
 }
 
-}  // namespace
+double loop_hand_distance(const servo::Points& loop, const Curves& curves) {
+  double best = std::numeric_limits<double>::infinity();
+  for (const auto& curve : curves)
+    for (std::size_t i = 0; i + 1 < curve.size(); ++i)
+      for (const auto& p : loop)
+        best = std::min(best, point_segment_distance(p, curve[i], curve[i + 1]));
+  return best;
+}
 
 ClaspCheckContext clasp_check_context(const robots::RobotModel& model, const Eigen::VectorXd& q,
                                       const servo::Points& loop, SecureClaspReport& report) {
@@ -268,11 +267,51 @@ std::shared_ptr<const robots::ObjectGeometry> object_near_hand(
   return robots::make_object_geometry(vertices, triangles, o.exact_round_shapes);
 }
 
-// Runs the check; `rounds_done` (optional) tells how many rounds ran.
+// The escape stages after the random motions passed, in `world` (the robot at q placed in
+// `data`), until one frees the object or times out.
+void run_escape_stages(const robots::RobotModel& model, robots::CollisionWorld& world,
+                       const robots::RobotData& data, const Eigen::VectorXd& q,
+                       const servo::Points& loop, const std::vector<Eigen::Vector3d>& vertices,
+                       const SecureClaspOptions& o, SecureClaspReport& report) {
+  const EscapeProblem problem =
+      escape_problem(model, q, loop, vertices, [&](const Eigen::Isometry3d& T) {
+        world.set_object_pose(T);
+        return world.object_in_collision(data);
+      });
+  EscapeSearchOptions eo = o.escape;
+  eo.seed = o.seed;
+  eo.deadline = o.deadline;
+  eo.translation_step = o.translation_step;
+  eo.rotation_step = o.rotation_step;
+  bool stopped = false;
+  for (const EscapeStage stage :
+       {EscapeStage::kEscapeSearch, EscapeStage::kGravity, EscapeStage::kApproach}) {
+    if (stopped) {
+      report.stages.push_back({stage_name(stage), false, false, false, 0, 0.0, std::nullopt});
+      continue;
+    }
+    report.stages.push_back(run_escape_stage(stage, problem, eo));
+    const VerificationStage& v = report.stages.back();
+    if (v.passed) continue;
+    stopped = true;
+    report.secure = false;
+    report.timed_out |= v.timed_out;
+    if (v.escape) {
+      report.escape = v.escape;
+      report.escape_stage = v.name;
+    }
+  }
+  world.set_object_pose(Eigen::Isometry3d::Identity());
+}
+
+// Runs the check; `rounds_done` (optional) tells how many rounds ran. `vertices`: the whole
+// object's, for the escape stages' centroid.
 SecureClaspReport run_check(const robots::RobotModel& model,
                             const std::shared_ptr<const robots::ObjectGeometry>& object,
-                            const Eigen::VectorXd& q, const servo::Points& loop,
-                            const SecureClaspOptions& o, int* rounds_done) {
+                            const std::vector<Eigen::Vector3d>& vertices, const Eigen::VectorXd& q,
+                            const servo::Points& loop, const SecureClaspOptions& o,
+                            int* rounds_done) {
+  const auto t0 = std::chrono::steady_clock::now();
   SecureClaspReport report;
   const detail::ClaspCheckContext c = detail::clasp_check_context(model, q, loop, report);
   robots::RobotData data(model);
@@ -327,6 +366,14 @@ SecureClaspReport run_check(const robots::RobotModel& model,
     stop = end >= o.motions || report.escaped_sequences > 0 || report.timed_out;
   }
   report.secure = report.escaped_sequences == 0 && !report.timed_out;
+  VerificationStage random{"random_motions", true, report.secure, report.timed_out, 0, 0.0,
+                           report.escape};
+  for (const Sequence& s : sequences) random.iterations += s.motions;
+  random.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  report.stages.push_back(std::move(random));
+  if (report.escape) report.escape_stage = "random_motions";
+  if (report.secure && o.escape_stages)
+    run_escape_stages(model, worlds.front(), data, q, loop, vertices, o, report);
   return report;
 }
 
@@ -338,8 +385,8 @@ SecureClaspReport check_secure_clasp(const robots::RobotModel& model,
                                      const Eigen::VectorXd& q, const servo::Points& loop,
                                      const SecureClaspOptions& options) {
   return run_check(model,
-                   object_near_hand(model, object_vertices, object_triangles, q, loop, options), q,
-                   loop, options, nullptr);
+                   object_near_hand(model, object_vertices, object_triangles, q, loop, options),
+                   object_vertices, q, loop, options, nullptr);
 }
 
 SecureClaspChecker::SecureClaspChecker(const robots::RobotModel& model,
@@ -361,8 +408,10 @@ SecureClaspReport SecureClaspChecker::check(const Eigen::VectorXd& q, const serv
         robots::make_object_geometry(vertices_, triangles_, options_.exact_round_shapes);
   }
   int rounds = 0;
-  SecureClaspReport report = run_check(model_, object, q, loop, options_, &rounds);
-  if (screened_out) *screened_out = !report.secure && rounds <= 2;
+  SecureClaspReport report = run_check(model_, object, vertices_, q, loop, options_, &rounds);
+  // The screening is the random motions' first rounds (the first stage).
+  if (screened_out)
+    *screened_out = (report.stages.empty() || !report.stages.front().passed) && rounds <= 2;
   return report;
 }
 

@@ -30,8 +30,14 @@ struct ClaspCheckContext {
 ClaspCheckContext clasp_check_context(const robots::RobotModel& model, const Eigen::VectorXd& q,
                                       const servo::Points& loop, SecureClaspReport& report);
 
+/// A uniformly distributed unit vector, by rejection from the cube (platform-independent).
+Eigen::Vector3d random_unit(std::mt19937_64& rng);
+
 /// The random stream of sequence `s` of a check with `seed`: the same whatever runs it.
 std::uint64_t sequence_seed(std::uint64_t seed, int s);
+
+/// Smallest distance from the loop's vertices to the finger curves' segments.
+double loop_hand_distance(const servo::Points& loop, const Curves& curves);
 
 /// Does the object, moved by T from its start, hold no more (see SecureClaspOptions)?
 bool object_free(const ClaspCheckContext& c, const Eigen::Isometry3d& T, double free_distance);

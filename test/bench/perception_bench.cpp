@@ -187,6 +187,19 @@ void BM_FarthestPointSampling(benchmark::State& state) {
 }
 BENCHMARK(BM_FarthestPointSampling)->Arg(2000)->Arg(10000)->Unit(benchmark::kMillisecond);
 
+// The scene rendered by each camera with 1 mm depth noise (seeds 1, 2, ...).
+std::vector<DepthView> noisy_views(const TriangleMesh& scene,
+                                   const std::vector<CameraModel>& cams) {
+  std::vector<DepthView> views;
+  for (size_t i = 0; i < cams.size(); ++i) {
+    DepthNoise noise;
+    noise.sigma = 0.001;
+    noise.seed = 1 + i;
+    views.push_back({cams[i], render_depth(scene, cams[i], noise)});
+  }
+  return views;
+}
+
 // The seen-surface collision mesh (depth_surface.hpp) of two 640x480 views with 1 mm noise, stride
 // 2, the floor removed by its plane (5 mm margin). Argument: 0 = the upright ring of the tests
 // (R = 10 cm, r = 1.2 cm, at x = 0.55 m), 1 = the purse on its table (the example depth files).
@@ -208,13 +221,7 @@ void BM_DepthSurfaceMesh(benchmark::State& state) {
     append_mesh(scene, objects::ground_plane(1.2));
     cams = objects::purse_cameras(2);
   }
-  std::vector<DepthView> views;
-  for (size_t i = 0; i < cams.size(); ++i) {
-    DepthNoise noise;
-    noise.sigma = 0.001;
-    noise.seed = 1 + i;
-    views.push_back({cams[i], render_depth(scene, cams[i], noise)});
-  }
+  const std::vector<DepthView> views = noisy_views(scene, cams);
   DepthSurfaceOptions o;
   o.support_plane = Eigen::Vector4d(0, 0, 1, 0);
   TriangleMesh m;
@@ -226,6 +233,28 @@ void BM_DepthSurfaceMesh(benchmark::State& state) {
   state.counters["vertices"] = static_cast<double>(m.vertices.size());
 }
 BENCHMARK(BM_DepthSurfaceMesh)->Arg(0)->Arg(1)->Unit(benchmark::kMillisecond);
+
+// The sensed space (sensed_space.hpp) of two 640x480 views of the purse on its table, 1 mm noise:
+// the object's region (its bounds grown by 8 cm) at 5 mm voxels, and (argument 1) the list of
+// voxels the robot must not enter taken from it.
+void BM_SensedSpace(benchmark::State& state) {
+  TriangleMesh scene = objects::purse();
+  append_mesh(scene, objects::ground_plane(1.2));
+  const std::vector<DepthView> views = noisy_views(scene, objects::purse_cameras(2));
+  Eigen::AlignedBox3d purse_box = bounds(objects::purse());
+  const Eigen::AlignedBox3d region = object_region(purse_box, SensedSpaceOptions().margin);
+  std::size_t blocked = 0;
+  long voxels = 0;
+  for (auto _ : state) {
+    const SensedSpace space(views, region);
+    voxels = space.dims().prod();
+    if (state.range(0) == 1) blocked = space.blocked_voxels(Eigen::Vector4d(0, 0, 1, 0)).size();
+    benchmark::DoNotOptimize(voxels);
+  }
+  state.counters["voxels"] = static_cast<double>(voxels);
+  state.counters["blocked"] = static_cast<double>(blocked);
+}
+BENCHMARK(BM_SensedSpace)->Arg(0)->Arg(1)->Unit(benchmark::kMillisecond);
 
 }  // namespace
 }  // namespace claspplan::perception

@@ -1,7 +1,9 @@
 // The secure-clasp check (paper Sec. V-A, 10 sequences x 500 motions) on the purse clasped by the
 // SDH (planned once, seed 1): the reference check of the tests (the whole object mesh, every
 // sequence to its end) against tsrrt::check_secure_clasp, on one core and on all cores, and
-// against a SecureClaspChecker that keeps the object's geometry between checks.
+// against a SecureClaspChecker that keeps the object's geometry between checks; these run the
+// random motions alone (escape_stages off). BM_EscapeSearch: the escape stages alone (no random
+// motions).
 #include <memory>
 
 #include <benchmark/benchmark.h>
@@ -25,7 +27,7 @@ const Clasped& clasped_purse() {
 // Runs `check(robot, vertices, triangles, q, loop, options)` on the purse's clasp, as often as
 // the benchmark asks.
 template <typename Check>
-void run(benchmark::State& state, Check check) {
+void run(benchmark::State& state, Check check, bool escape_stages = false) {
   const tsrrt::ClaspResult& r = clasped_purse().result;
   if (!r.verified) {
     state.SkipWithError("the purse was not clasped");
@@ -33,6 +35,8 @@ void run(benchmark::State& state, Check check) {
   }
   tsrrt::SecureClaspOptions o;
   o.threads = static_cast<int>(state.range(0));
+  o.escape_stages = escape_stages;
+  if (escape_stages) o.sequences = 0;
   const auto& m = r.collision_mesh;
   bool secure = false;
   for (auto _ : state) {
@@ -68,6 +72,13 @@ void BM_SecureClaspChecker(benchmark::State& state) {
       });
 }
 BENCHMARK(BM_SecureClaspChecker)->Arg(1)->Arg(0)->Iterations(5)->Unit(benchmark::kMillisecond);
+
+// The escape stages (escape search, gravity, approach) on the secure clasp: each runs its whole
+// budget. Single-threaded whatever the argument.
+void BM_EscapeSearch(benchmark::State& state) {
+  run(state, tsrrt::check_secure_clasp, true);
+}
+BENCHMARK(BM_EscapeSearch)->Arg(1)->Iterations(5)->Unit(benchmark::kMillisecond);
 
 }  // namespace
 }  // namespace claspplan::test

@@ -55,7 +55,7 @@ INSTANTIATE_TEST_SUITE_P(
     ::testing::Values(Case{"controller_ring_icub", "2", {"--controller-only"}},
                       Case{"jug_armar3", "1", {"--max-cycles", "40"}},
                       Case{"obstructed_ring_armar3", "1", {"--max-cycles", "400"}},
-                      Case{"real/spice_rack_icub", "3", {"--max-cycles", "40"}}),
+                      Case{"real/utensil_rail_icub", "3", {"--max-cycles", "40"}}),
     [](const auto& info) {
       std::string name = info.param.scenario;
       for (char& ch : name)

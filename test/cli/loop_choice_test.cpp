@@ -60,10 +60,14 @@ TEST(LoopChoice, JugHandleIsChosenAndItsMouthRejectedForEveryHand) {
     const perception::ObjectModel m = perceive(in, hand);
     ASSERT_NE(m.best(), nullptr) << hand;
     EXPECT_LT((m.best()->centre - handle).norm(), 0.04) << hand << ": " << m.best()->reason;
-    // The mouth was found and refused as a cavity's opening.
+    // The mouth was found and refused (a cavity's opening, enclosed or unseen space beyond it,
+    // or the loop around its wall).
     bool mouth = false;
-    for (const auto& l : m.loops) mouth |= l.verdict == "cavity" && l.centre.z() > 0.18;
-    EXPECT_TRUE(mouth) << hand;
+    for (const auto& l : m.loops) mouth |= !l.claspable && l.centre.z() > 0.18;
+    std::string verdicts;
+    for (const auto& l : m.loops)
+      verdicts += " [" + l.verdict + " z " + std::to_string(l.centre.z()) + "]";
+    EXPECT_TRUE(mouth) << hand << verdicts;
     // Targets lie on the handle, where the closed hand fits around it.
     ASSERT_FALSE(m.targets.empty());
     for (const auto& t : m.targets) EXPECT_GT(t.p.y(), 0.055) << hand;

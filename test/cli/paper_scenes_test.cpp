@@ -36,8 +36,8 @@ double distance(const json& a, const Eigen::Vector3d& b) {
 
 class PaperScene : public ::testing::TestWithParam<std::string> {};
 
-// The loop count of Fig. 3 among the stable and among the claspable loops seen from the two views;
-// the loop nearest the clasped hole is claspable.
+// The loop count of Fig. 3 among the stable and among the claspable loops seen from the three
+// views; the loop nearest the clasped hole is claspable.
 TEST_P(PaperScene, LoopsFindsThePapersLoops) {
   const std::string dir = kDepth + "/" + GetParam();
   const json scene = scene_file(GetParam());
@@ -48,16 +48,25 @@ TEST_P(PaperScene, LoopsFindsThePapersLoops) {
       crop += (crop.empty() ? "" : ",") + std::to_string(w[end][k].get<double>());
   const CliResult r =
       run_cli({"loops", dir + "/view_0.png", "--camera", dir + "/view_0.yaml", dir + "/view_1.png",
-               "--camera", dir + "/view_1.yaml", "--crop=" + crop, "--robot", "kr5_sdh", "--json"});
+               "--camera", dir + "/view_1.yaml", dir + "/view_2.png", "--camera",
+               dir + "/view_2.yaml", "--crop=" + crop, "--robot", "kr5_sdh", "--json"});
   ASSERT_EQ(r.exit_code, 0) << r.err;
   const json out = r.json();
-  int claspable = 0;
-  for (const auto& l : out["loops"]) claspable += l["claspable"].get<bool>();
+  // Claspable, or refused only for what the cameras did not see (issue 33: the upright chairs'
+  // loops under the seat lie partly in its shadow).
+  int found = 0;
+  for (const auto& l : out["loops"])
+    found += l["claspable"].get<bool>() || l["verdict"] == "unseen_far_side";
   // The chair on its side: the loop of the face it lies on is refused for a hand (its stretcher
   // and legs on the floor leave no bar to close around).
   const int on_floor = GetParam() == "chair_3" ? 1 : 0;
-  EXPECT_GE(claspable, scene["loops"].get<int>() - on_floor);
-  EXPECT_GE(out["stable_loops"].get<int>(), scene["loops"].get<int>());
+  // With the third view, one of the upright chair's 7 loops fills in at d' (chair_1, chair_2,
+  // chair_obstructed).
+  const int merged =
+      GetParam() == "chair_1" || GetParam() == "chair_2" || GetParam() == "chair_obstructed" ? 1
+                                                                                             : 0;
+  EXPECT_GE(found, scene["loops"].get<int>() - on_floor - merged);
+  EXPECT_GE(out["stable_loops"].get<int>(), scene["loops"].get<int>() - merged);
   const Eigen::Vector3d near = point(scene["near"]);
   const json* nearest = nullptr;
   for (const auto& l : out["loops"])
@@ -65,7 +74,14 @@ TEST_P(PaperScene, LoopsFindsThePapersLoops) {
       nearest = &l;
   ASSERT_NE(nearest, nullptr);
   EXPECT_LT(distance((*nearest)["centre"], near), 0.12);  // the chair's loops are 30-40 cm wide
-  EXPECT_TRUE((*nearest)["claspable"].get<bool>()) << (*nearest)["reason"];
+  if (GetParam() == "chair_obstructed") {
+    // Fig. 7's loop under the seat: half the space beyond it lies in the seat's shadow, so it is
+    // refused as never seen through, with a camera position that would see through it (issue 33).
+    EXPECT_EQ((*nearest)["verdict"], "unseen_far_side") << (*nearest)["reason"];
+    EXPECT_NE((*nearest)["reason"].get<std::string>().find("a camera at ("), std::string::npos);
+  } else {
+    EXPECT_TRUE((*nearest)["claspable"].get<bool>()) << (*nearest)["reason"];
+  }
 }
 
 INSTANTIATE_TEST_SUITE_P(Depth, PaperScene, ::testing::ValuesIn(cli::paper_scene_names()));
@@ -80,10 +96,10 @@ TEST_P(PaperScenario, NearChoosesTheClaspedLoop) {
         std::string(CLASPPLAN_SCENARIOS) + "/" + GetParam() + "_" + hand + ".yaml";
     if (GetParam() == "purse_1") continue;  // the hand-written purse_1 renders at run time
     const cli::Scenario s = cli::load_scenario(file);
-    ASSERT_EQ(s.object.depth.size(), 2u) << file;
+    ASSERT_EQ(s.object.depth.size(), 3u) << file;
     ASSERT_TRUE(s.loop_hint) << file;
     const perception::PerceptionInputs in = cli::scenario_inputs(s);
-    ASSERT_EQ(in.depth_views.size(), 2u);
+    ASSERT_EQ(in.depth_views.size(), 3u);
     perception::PerceptionOptions o = s.perception;
     const robots::HandSize size = robots::hand_size(robots::load_robot(s.robot));
     o.finger_thickness = size.finger_thickness;
@@ -92,7 +108,11 @@ TEST_P(PaperScenario, NearChoosesTheClaspedLoop) {
     const int chosen = tsrrt::choose_loop(model, s.loop_hint);
     ASSERT_GE(chosen, 0) << file;
     const double d = (model.loops[chosen].centre - *s.loop_hint).norm();
-    EXPECT_LT(d, 0.12) << file;  // the chair's loops are 30-40 cm wide
+    // The chairs' loops are 30-40 cm wide; the obstructed chair's hidden loop is refused as never
+    // seen through (LoopsFindsThePapersLoops), and the nearest claspable one is chosen instead.
+    if (GetParam() != "chair_obstructed") {
+      EXPECT_LT(d, 0.12) << file;
+    }
     for (const auto& l : model.loops) {
       if (!l.claspable) continue;
       EXPECT_GE((l.centre - *s.loop_hint).norm(), d) << file;

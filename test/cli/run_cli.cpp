@@ -151,8 +151,9 @@ TEST(Scenario, NoClaspableLoopIsExitOne) {
 void expect_connect_outcomes(const json& o) {
   ASSERT_TRUE(o.is_object()) << o;
   int endings = 0;
-  for (const char* key : {"accepted", "rejected", "contact_object", "contact_environment",
-                          "self_collision", "joint_limits", "stall", "step_cap", "time_limit"}) {
+  for (const char* key :
+       {"accepted", "rejected", "contact_object", "contact_environment", "contact_unseen",
+        "self_collision", "joint_limits", "stall", "step_cap", "time_limit"}) {
     ASSERT_TRUE(o.contains(key)) << key;
     endings += o[key].get<int>();
   }

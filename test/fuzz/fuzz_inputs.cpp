@@ -1,5 +1,6 @@
 #include "test/fuzz/fuzz_inputs.hpp"
 
+#include <exception>
 #include <functional>
 #include <map>
 #include <stdexcept>
@@ -9,6 +10,7 @@
 #include "examples/scenario.hpp"
 #include "perception/camera.hpp"
 #include "perception/file_io.hpp"
+#include "perception/sensor_cloud.hpp"
 #include "robots/embedded_models.hpp"
 #include "robots/robot_model.hpp"
 
@@ -31,6 +33,30 @@ void geometry(const std::string& ext, const std::string& data) {
   perception::parse_geometry(data, "fuzz." + ext);
 }
 
+// A cloud file as geometry and as sensor data (its grid, viewpoint and the depth view made of it):
+// both readers run on every input, the first input error is rethrown.
+void cloud(const std::string& ext, const std::string& data) {
+  std::exception_ptr error;
+  const auto attempt = [&](const std::function<void()>& f) {
+    try {
+      f();
+    } catch (const std::invalid_argument&) {
+      if (!error) error = std::current_exception();
+    }
+  };
+  attempt([&] { geometry(ext, data); });
+  attempt([&] {
+    const std::string name = "fuzz." + ext;
+    const perception::SensorCloud c = perception::parse_sensor_cloud(data, name);
+    perception::check_metric_units(c.valid_points(), name);
+    if (c.organized())
+      perception::organized_cloud_view(c, Eigen::Isometry3d::Identity(), name);
+    else if (c.viewpoint)
+      perception::unorganized_cloud_view(c.points, c.viewpoint->translation(), name);
+  });
+  if (error) std::rethrow_exception(error);
+}
+
 // The URDF and hand description of the built-in kr5_sdh: the fixed half of the robot targets.
 std::string sdh_file(const char* name) {
   const char* text = robots::embedded_model_file(name);
@@ -50,9 +76,9 @@ const std::map<std::string, Parser>& parsers() {
          perception::depth_to_points(view);
        }},
       {"camera_yaml", [](const std::string& d) { perception::parse_camera_yaml(d, "fuzz.yaml"); }},
-      {"pcd", [](const std::string& d) { geometry("pcd", d); }},
-      {"ply", [](const std::string& d) { geometry("ply", d); }},
-      {"xyz", [](const std::string& d) { geometry("xyz", d); }},
+      {"pcd", [](const std::string& d) { cloud("pcd", d); }},
+      {"ply", [](const std::string& d) { cloud("ply", d); }},
+      {"xyz", [](const std::string& d) { cloud("xyz", d); }},
       {"obj", [](const std::string& d) { geometry("obj", d); }},
       {"stl", [](const std::string& d) { geometry("stl", d); }},
       {"off", [](const std::string& d) { geometry("off", d); }},

@@ -80,6 +80,19 @@ def pcd():
           "VERSION 0.7\nFIELDS x y z rgb\nSIZE 8 8 8 4\nTYPE F F F U\nCOUNT 1 1 1 1\nWIDTH 2\n"
           "HEIGHT 2\nPOINTS 4\nDATA ascii\n0 0 1 5\nnan nan nan 0\n0.1 0 1 7\n0 0.1 1 9\n")
     write("pcd", "truncated.pcd", (head + "DATA binary\n").encode() + binary[:30])
+    # An organized pinhole grid with holes: enough pixels for fit_pinhole and the depth view.
+    rows = []
+    for v in range(12):
+        for u in range(16):
+            if (u * 7 + v * 3) % 11 == 0:
+                rows.append("nan nan nan")
+                continue
+            z = 1 + 0.0625 * ((u + v) % 4)
+            rows.append("%.6g %.6g %.6g" % ((u - 7.5) * z / 20, (v - 5.5) * z / 20, z))
+    write("pcd", "organized_pinhole.pcd",
+          "# .PCD v0.7 - an organized 16x12 pinhole grid (fx = fy = 20, cx = 7.5, cy = 5.5), "
+          "NaN holes\nVERSION 0.7\nFIELDS x y z\nSIZE 4 4 4\nTYPE F F F\nCOUNT 1 1 1\nWIDTH 16\n"
+          "HEIGHT 12\nVIEWPOINT 0 0 0 1 0 0 0\nPOINTS 192\nDATA ascii\n" + "\n".join(rows) + "\n")
 
 
 def ply():

@@ -181,7 +181,7 @@ TEST(Camera, YamlRoundTripAndValidation) {
             std::string::npos);
   EXPECT_NE(error_of([&] {
               read_camera_yaml(with("depth_scale:", "depth_scal:"));
-            }).find("missing key 'depth_scale'"),
+            }).find("unknown key 'depth_scal'"),
             std::string::npos);
   EXPECT_NE(error_of([&] { read_camera_yaml(with("fy: 525", "fy: abc")); }).find("number"),
             std::string::npos);

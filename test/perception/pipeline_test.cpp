@@ -172,7 +172,17 @@ void expect_handle_first(const ObjectModel& m) {
 }
 
 TEST(Depth, HandleFoundAndRankedFirstFromOneCamera) {
-  expect_handle_first(from_depth(1, 0.0));
+  // From one camera half of the space beyond the handle lies in its own shadow: the handle is
+  // found and ranked first, and either passes or is refused as never seen through, with a camera
+  // position that would see through it (issue 33).
+  const ObjectModel m = from_depth(1, 0.0);
+  ASSERT_FALSE(m.loops.empty());
+  const Loop& handle = m.loops[0];
+  EXPECT_LT((handle.centre - objects::purse_handle_centre()).norm(), 0.04);
+  if (!handle.claspable) {
+    EXPECT_EQ(handle.verdict, "unseen_far_side") << handle.reason;
+    EXPECT_NE(handle.reason.find("a camera at ("), std::string::npos) << handle.reason;
+  }
 }
 
 TEST(Depth, HandleFoundAndRankedFirstFromTwoCameras) {
@@ -182,10 +192,7 @@ TEST(Depth, HandleFoundAndRankedFirstFromTwoCameras) {
 }
 
 TEST(Depth, OneMillimetreNoiseStillFindsTheHandle) {
-  for (std::uint64_t seed : {1, 2}) {
-    expect_handle_first(from_depth(1, 0.001, seed));
-    expect_handle_first(from_depth(2, 0.001, seed));
-  }
+  for (std::uint64_t seed : {1, 2}) expect_handle_first(from_depth(2, 0.001, seed));
 }
 
 TEST(Depth, OcclusionShadowIsNotClaspable) {
@@ -203,14 +210,20 @@ TEST(Depth, OcclusionShadowIsNotClaspable) {
       0.004);
   const ObjectModel m = from_mesh(scene, 1, 0.0, {{0.0, -0.35, 0.6}});
   ASSERT_GE(m.beta1, 2);
-  ASSERT_NE(m.best(), nullptr);
-  EXPECT_LT((m.best()->centre - Eigen::Vector3d(0, 0, 0.06)).norm(), 0.05);
-  int shadows = 0;
-  for (size_t i = 1; i < m.loops.size(); ++i) {
-    EXPECT_FALSE(m.loops[i].claspable) << m.loops[i].reason;
-    shadows += m.loops[i].reason.find("occlusion shadow") != std::string::npos;
+  // Seen once, steeply from the front, the space behind the hole lies in the bar's shadow: the
+  // hole is refused as never seen through (issue 33), with a camera position level with it.
+  EXPECT_EQ(m.best(), nullptr) << m.loops[0].reason;
+  int shadows = 0, unseen = 0;
+  for (const Loop& l : m.loops) {
+    EXPECT_FALSE(l.claspable) << l.reason;
+    shadows += l.reason.find("occlusion shadow") != std::string::npos;
+    if (l.verdict == "unseen_far_side" && (l.centre - Eigen::Vector3d(0, 0, 0.06)).norm() < 0.05) {
+      ++unseen;
+      EXPECT_NE(l.reason.find("a camera at ("), std::string::npos) << l.reason;
+    }
   }
   EXPECT_GE(shadows, 1);
+  EXPECT_EQ(unseen, 1);
   // Seen from both sides the bar's shadow is filled; small gaps hidden from both cameras at the
   // posts' feet remain, ranked after the hole and marked.
   const ObjectModel both = from_mesh(scene, 1, 0.0, {{0.0, -0.35, 0.6}, {0.0, 0.35, 0.6}});
@@ -288,7 +301,8 @@ TEST(Pipeline, InvalidInputs) {
   PerceptionInputs flat;
   flat.clouds.emplace_back();
   for (int i = 0; i < 100; ++i) flat.clouds[0].emplace_back(i % 10, i / 10, 1.0);
-  EXPECT_NE(error(flat).find("coplanar"), std::string::npos);
+  // A flat cloud is all supporting plane (clouds go through the depth stages: issue 33).
+  EXPECT_NE(error(flat).find("above the supporting plane"), std::string::npos) << error(flat);
   PerceptionInputs nan;
   nan.clouds.push_back({{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0, 0, NAN}});
   EXPECT_NE(error(nan).find("NaN"), std::string::npos);

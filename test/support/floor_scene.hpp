@@ -1,5 +1,6 @@
-// An object on the floor in front of the robot, seen like the purse_1 scenarios: two synthetic
-// depth cameras above the robot's shoulders (1 mm noise), the floor in the images.
+// An object on the floor in front of the robot, seen like the purse_1 scenarios: three synthetic
+// depth cameras, two above the robot's shoulders and one behind the object (1 mm noise), the floor
+// in the images.
 #pragma once
 
 #include <Eigen/Geometry>
@@ -22,7 +23,8 @@ inline perception::PerceptionInputs seen_on_floor(const perception::TriangleMesh
   perception::DepthNoise noise;
   noise.sigma = 0.001;
   for (const Eigen::Vector3d& position :
-       {Eigen::Vector3d(0.2, -0.6, 0.85), Eigen::Vector3d(0.2, 0.6, 0.85)}) {
+       {Eigen::Vector3d(0.2, -0.6, 0.85), Eigen::Vector3d(0.2, 0.6, 0.85),
+        Eigen::Vector3d(1.0, 0.0, 0.85)}) {
     perception::DepthView v;
     v.camera = objects::kinect_camera(position, {0.55, 0, 0.15});
     v.image = perception::render_depth(scene, v.camera, noise);

@@ -8,6 +8,7 @@
 #include "examples/objects.hpp"
 #include "perception/depth_render.hpp"
 #include "test/support/purse_request.hpp"
+#include "test/support/unseen_space.hpp"
 #include "tsrrt/clasp_scene.hpp"
 
 namespace claspplan::test {
@@ -106,6 +107,28 @@ TEST_F(PurseFromDepth, SameRequestSameResult) {
     EXPECT_EQ(again.motion.waypoints[i], result_->motion.waypoints[i]) << "waypoint " << i;
   EXPECT_EQ(again.statistics.nodes, result_->statistics.nodes);
   EXPECT_EQ(again.final_state.virtual_linking, result_->final_state.virtual_linking);
+}
+
+// Issue 33: the planned path and the closed hand stay in space the cameras saw free (checked by
+// points inside the robot's shapes against the sensed map, without the collision world).
+TEST_F(PurseFromDepth, NoPartOfTheRobotEntersUnseenSpace) {
+  const tsrrt::ClaspResult& r = *result_;
+  ASSERT_TRUE(r.success) << r.reason;
+  ASSERT_TRUE(r.object.sensed);
+  const auto n = r.object.sensed->counts();
+  EXPECT_GT(n[0], 0) << "the purse's inside and back are unknown";
+  EXPECT_FALSE(r.unseen_voxels.empty());
+  const auto reached = first_in_unseen_space(*sdh(), r.motion.waypoints, *r.object.sensed,
+                                             request_for(purse()).planning.collision_resolution);
+  EXPECT_FALSE(reached) << *reached;
+}
+
+// The check above can fail: a map without views is unknown everywhere, and the hand is in it.
+TEST_F(PurseFromDepth, UnseenSpaceCheckFindsTheHandInAMapWithoutViews) {
+  const tsrrt::ClaspResult& r = *result_;
+  ASSERT_FALSE(r.motion.waypoints.empty());
+  const perception::SensedSpace blind({}, r.object.sensed->region());
+  EXPECT_TRUE(first_in_unseen_space(*sdh(), {r.motion.final_q}, blind, 0.02));
 }
 
 TEST(ClaspSetup, CupWithoutHandleIsNoAnswerWithAReason) {

@@ -1,0 +1,248 @@
+#include "perception/sensed_space.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <stdexcept>
+#include <string>
+#include <utility>
+
+#include "perception/parallel.hpp"
+
+namespace claspplan::perception {
+
+namespace {
+
+// Range queries on a depth image: the nearest reading and the number of pixels with a reading in
+// any pixel rectangle, exactly, in a few reads. Minima come from a sparse table (level k holds the
+// minimum of each 2^k x 2^k square, so a rectangle is the union of a few overlapping squares),
+// counts from a summed-area table. Pixels without a reading are left out of the minimum (a
+// sensor's scattered dropouts would otherwise make every large footprint unknown) but counted: a
+// footprint that is mostly without readings says nothing.
+class DepthRanges {
+ public:
+  explicit DepthRanges(const DepthImage& image) : w_(image.width), h_(image.height) {
+    std::vector<float> base(image.depth.size());
+    sum_.assign(static_cast<std::size_t>(w_ + 1) * (h_ + 1), 0);
+    for (int v = 0; v < h_; ++v) {
+      std::uint32_t row = 0;
+      for (int u = 0; u < w_; ++u) {
+        const std::size_t i = static_cast<std::size_t>(v) * w_ + u;
+        const float d = image.depth[i];
+        const bool ok = std::isfinite(d) && d > 0.0f;
+        base[i] = ok ? d : kNone;
+        row += ok;
+        sum_[static_cast<std::size_t>(v + 1) * (w_ + 1) + u + 1] =
+            sum_[static_cast<std::size_t>(v) * (w_ + 1) + u + 1] + row;
+      }
+    }
+    mins_.push_back(std::move(base));
+    for (int k = 1; (1 << k) <= std::min(w_, h_); ++k) {
+      const std::vector<float>& below = mins_.back();
+      const int half = 1 << (k - 1);
+      std::vector<float> up(below.size(), kNone);
+      for (int v = 0; v + 2 * half <= h_; ++v)
+        for (int u = 0; u + 2 * half <= w_; ++u) {
+          const std::size_t i = static_cast<std::size_t>(v) * w_ + u;
+          up[i] = std::min(std::min(below[i], below[i + half]),
+                           std::min(below[i + static_cast<std::size_t>(half) * w_],
+                                    below[i + static_cast<std::size_t>(half) * w_ + half]));
+        }
+      mins_.push_back(std::move(up));
+    }
+  }
+
+  // Over pixels [u0, u1] x [v0, v1], inside the image: the nearest reading (infinity if none) and
+  // the share of pixels that have one.
+  std::pair<float, double> nearest(int u0, int u1, int v0, int v1) const {
+    const int su = u1 - u0 + 1, sv = v1 - v0 + 1;
+    int k = 0;
+    while ((2 << k) <= std::min(su, sv) && k + 1 < static_cast<int>(mins_.size())) ++k;
+    const int side = 1 << k;
+    const std::vector<float>& level = mins_[k];
+    float m = kNone;
+    for (int v = v0;; v = std::min(v + side, v1 - side + 1)) {
+      for (int u = u0;; u = std::min(u + side, u1 - side + 1)) {
+        m = std::min(m, level[static_cast<std::size_t>(v) * w_ + u]);
+        if (u + side > u1) break;
+      }
+      if (v + side > v1) break;
+    }
+    const auto at = [&](int u, int v) { return sum_[static_cast<std::size_t>(v) * (w_ + 1) + u]; };
+    const double valid =
+        static_cast<double>(at(u1 + 1, v1 + 1)) - at(u0, v1 + 1) - at(u1 + 1, v0) + at(u0, v0);
+    return {m, valid / (static_cast<double>(su) * sv)};
+  }
+
+  // The reading at a pixel, 0 without one.
+  float pixel(int u, int v) const {
+    const float d = mins_[0][static_cast<std::size_t>(v) * w_ + u];
+    return d == kNone ? 0.0f : d;
+  }
+
+ private:
+  static constexpr float kNone = std::numeric_limits<float>::infinity();
+  int w_, h_;
+  std::vector<std::vector<float>> mins_;
+  std::vector<std::uint32_t> sum_;  // (w + 1) x (h + 1) summed-area table of valid pixels
+};
+
+// A footprint with readings on fewer of its pixels says nothing (see DepthRanges).
+constexpr double kMinValidShare = 0.5;
+
+struct ViewCaster {
+  const CameraModel& camera;
+  bool empty_free;    // a pixel without a reading saw nothing (a synthetic scene)
+  Eigen::Matrix3d R;  // camera <- world
+  Eigen::Vector3d t;
+  DepthRanges ranges;
+
+  ViewCaster(const DepthView& view)
+      : camera(view.camera),
+        empty_free(view.camera.no_reading_is_free),
+        R(view.camera.T_world_camera.linear().transpose()),
+        t(-R * view.camera.T_world_camera.translation()),
+        ranges(view.image) {}
+
+  // What this view says of a voxel centred at p, with half-diagonal h.
+  // The voxel's corners relative to its centre, in the camera frame (set by corners()).
+  std::array<Eigen::Vector3d, 8> corner;
+
+  void corners(double half_edge) {
+    for (int c = 0; c < 8; ++c)
+      corner[c] = R * Eigen::Vector3d((c & 1 ? 1 : -1) * half_edge, (c & 2 ? 1 : -1) * half_edge,
+                                      (c & 4 ? 1 : -1) * half_edge);
+  }
+
+  // What this view says of the voxel centred at p. Its footprint is the pixel rectangle around its
+  // 8 corners' projections (the cube's image lies inside it), its depth span their z range.
+  Sensed classify(const Eigen::Vector3d& p, double tolerance) const {
+    const Eigen::Vector3d q = R * p + t;
+    double u0 = INFINITY, u1 = -INFINITY, v0 = INFINITY, v1 = -INFINITY;
+    double z0 = INFINITY, z1 = -INFINITY;
+    for (const auto& c : corner) {
+      const Eigen::Vector3d k = q + c;
+      if (k.z() <= 1e-6) return Sensed::kUnknown;  // reaches behind the camera
+      const double u = camera.fx * k.x() / k.z() + camera.cx;
+      const double v = camera.fy * k.y() / k.z() + camera.cy;
+      u0 = std::min(u0, u), u1 = std::max(u1, u), v0 = std::min(v0, v), v1 = std::max(v1, v);
+      z0 = std::min(z0, k.z()), z1 = std::max(z1, k.z());
+    }
+    // Pixels are centred at integer coordinates: those whose centres the footprint covers.
+    const double pu0 = std::floor(u0 + 0.5), pu1 = std::floor(u1 + 0.5);
+    const double pv0 = std::floor(v0 + 0.5), pv1 = std::floor(v1 + 0.5);
+    if (pu1 < 0 || pv1 < 0 || pu0 >= camera.width || pv0 >= camera.height) return Sensed::kUnknown;
+    const double u = camera.fx * q.x() / q.z() + camera.cx;
+    const double v = camera.fy * q.y() / q.z() + camera.cy;
+    const int iu = static_cast<int>(std::floor(u + 0.5)),
+              iv = static_cast<int>(std::floor(v + 0.5));
+    if (iu >= 0 && iv >= 0 && iu < camera.width && iv < camera.height) {
+      const float d = ranges.pixel(iu, iv);
+      if (d > 0.0f && d >= z0 - tolerance && d <= z1 + tolerance) return Sensed::kOccupied;
+    }
+    // Free only when the whole footprint is in the image and every ray in it went past the voxel.
+    if (pu0 < 0 || pv0 < 0 || pu1 >= camera.width || pv1 >= camera.height) return Sensed::kUnknown;
+    const auto [nearest, valid] = ranges.nearest(static_cast<int>(pu0), static_cast<int>(pu1),
+                                                 static_cast<int>(pv0), static_cast<int>(pv1));
+    return (empty_free || valid >= kMinValidShare) && nearest > z1 ? Sensed::kFree
+                                                                   : Sensed::kUnknown;
+  }
+};
+
+}  // namespace
+
+SensedSpace::SensedSpace(const std::vector<DepthView>& views, const Eigen::AlignedBox3d& region,
+                         const SensedSpaceOptions& o) {
+  if (region.isEmpty() || !region.min().allFinite() || !region.max().allFinite())
+    throw std::invalid_argument("sensed space: the region is empty or not finite");
+  if (!(o.resolution > 0) || !std::isfinite(o.resolution) || !(o.surface_tolerance >= 0) ||
+      o.max_voxels < 1)
+    throw std::invalid_argument("sensed space: the resolution must be > 0");
+  for (std::size_t i = 0; i < views.size(); ++i)
+    validate_camera(views[i].camera, "sensed space view " + std::to_string(i));
+  // Coarsen the grid until it fits; snap it to multiples of the resolution (so that it lines up
+  // with an OcTree's keys at that resolution).
+  resolution_ = o.resolution;
+  for (;;) {
+    const Eigen::Vector3d lo = (region.min() / resolution_).array().floor() * resolution_;
+    const Eigen::Vector3d hi = (region.max() / resolution_).array().ceil() * resolution_;
+    dims_ = ((hi - lo) / resolution_).array().round().cast<int>().max(1);
+    box_ = Eigen::AlignedBox3d(lo, lo + resolution_ * dims_.cast<double>());
+    if (static_cast<double>(dims_.x()) * dims_.y() * dims_.z() <= o.max_voxels) break;
+    resolution_ *= 1.25;
+  }
+  cells_.assign(static_cast<std::size_t>(dims_.x()) * dims_.y() * dims_.z(),
+                static_cast<std::uint8_t>(Sensed::kUnknown));
+  if (views.empty()) return;
+
+  std::vector<ViewCaster> casters;
+  for (const auto& view : views) {
+    casters.emplace_back(view);
+    casters.back().corners(0.5 * resolution_);
+  }
+  parallel_chunks(static_cast<std::size_t>(dims_.z()), 0, [&](std::size_t k0, std::size_t k1) {
+    for (std::size_t k = k0; k < k1; ++k)
+      for (int j = 0; j < dims_.y(); ++j)
+        for (int i = 0; i < dims_.x(); ++i) {
+          const Eigen::Vector3d p = centre(i, j, static_cast<int>(k));
+          Sensed s = Sensed::kUnknown;
+          for (const auto& c : casters) {
+            const Sensed here = c.classify(p, o.surface_tolerance);
+            if (here == Sensed::kOccupied) {
+              s = here;
+              break;
+            }
+            if (here == Sensed::kFree) s = here;
+          }
+          cells_[(k * dims_.y() + j) * dims_.x() + i] = static_cast<std::uint8_t>(s);
+        }
+  });
+}
+
+Sensed SensedSpace::at(const Eigen::Vector3d& p) const {
+  if (cells_.empty() || !box_.contains(p)) return Sensed::kUnknown;
+  const Eigen::Vector3i idx = ((p - box_.min()) / resolution_).array().floor().cast<int>();
+  const Eigen::Vector3i c = idx.cwiseMax(0).cwiseMin(dims_ - Eigen::Vector3i::Ones());
+  return cell(c.x(), c.y(), c.z());
+}
+
+bool SensedSpace::free_for_robot(const Eigen::Vector3d& p) const {
+  if (cells_.empty() || !box_.contains(p)) return true;
+  return at(p) == Sensed::kFree;
+}
+
+std::array<long, 3> SensedSpace::counts() const {
+  std::array<long, 3> n{0, 0, 0};
+  for (std::uint8_t c : cells_) ++n[c];
+  return n;
+}
+
+std::vector<Eigen::Vector3d> SensedSpace::blocked_voxels(
+    const std::optional<Eigen::Vector4d>& support, double margin) const {
+  Eigen::Vector3d normal = Eigen::Vector3d::Zero();
+  double offset = 0.0;
+  if (support) {
+    const double len = support->head<3>().norm();
+    normal = support->head<3>() / len;
+    offset = (*support)[3] / len;
+  }
+  std::vector<Eigen::Vector3d> out;
+  for (int k = 0; k < dims_.z(); ++k)
+    for (int j = 0; j < dims_.y(); ++j)
+      for (int i = 0; i < dims_.x(); ++i) {
+        const Sensed s = cell(i, j, k);
+        if (s == Sensed::kFree) continue;
+        const Eigen::Vector3d p = centre(i, j, k);
+        if (s == Sensed::kUnknown || (support && normal.dot(p) + offset <= margin))
+          out.push_back(p);
+      }
+  return out;
+}
+
+Eigen::AlignedBox3d object_region(const Eigen::AlignedBox3d& bounds, double margin) {
+  if (bounds.isEmpty()) return bounds;
+  const Eigen::Vector3d m = Eigen::Vector3d::Constant(margin);
+  return Eigen::AlignedBox3d(bounds.min() - m, bounds.max() + m);
+}
+
+}  // namespace claspplan::perception

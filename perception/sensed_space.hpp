@@ -1,0 +1,106 @@
+// What the sensors saw of the space around the object: each voxel of the object's region is free
+// (a camera ray passed through all of it before meeting a surface), occupied (a measured surface
+// lies in it) or unknown (no ray reached it: behind a surface, in a shadow, outside every view).
+//
+// Why: a depth image or a cloud holds surfaces, not space. A hole that no camera saw through, the
+// back wall behind a mug's rim or a gap between two boxes look the same in the points as a handle
+// does; only the rays that were cast tell them apart. The planner moves the robot near the object
+// through known-free space only, and a loop is claspable only when its hole opens into known-free
+// space on both sides (loops.hpp).
+//
+// The model is built by casting every camera's rays, read backwards: a voxel's centre is projected
+// into each depth image (a pinhole camera, camera.hpp), and the pixels covering the voxel's
+// footprint say whether their rays passed it (the nearest of their depths lies beyond the voxel),
+// ended in it (a depth within the voxel), or ended before it. This is exact for the pixel grid,
+// costs one projection per voxel and view (no ray traversal), and gives the same answer on any
+// number of threads. Pixels without a reading (0: out of range, absorbed, shadowed by the
+// projector) say nothing: what lies along them is unknown. Only in a rendering of a complete
+// synthetic scene (CameraModel::no_reading_is_free) did such a ray see nothing up to any range.
+//
+// The rule for unknown space:
+//  - inside the object's region (its points' bounds grown by `margin`): unknown counts as
+//    occupied for the robot (blocked_voxels()): nothing that was not seen is assumed empty;
+//  - outside it: unknown counts as free, like every part of the workspace that the scenario does
+//    not declare (environment boxes). Cameras see the object, not the room: the arm's way from its
+//    start is the user's to keep clear, as with any planner given a static scene.
+// Inputs without a sensor origin (a cloud with no viewpoint, a mesh) build no model: the space is
+// then unknown, and loops cannot be seen through (loops.hpp says so in their reasons).
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <optional>
+#include <vector>
+
+#include <Eigen/Core>
+#include <Eigen/Geometry>
+
+#include "perception/camera.hpp"
+
+namespace claspplan::perception {
+
+enum class Sensed : std::uint8_t { kUnknown = 0, kFree = 1, kOccupied = 2 };
+
+struct SensedSpaceOptions {
+  double resolution = 0.005;  ///< voxel edge (m)
+  /// The object's region: the object points' bounds grown by this (m): the hand's reach around a
+  /// bar it clasps (fingers 5-8 cm long) fits in it.
+  double margin = 0.08;
+  /// A depth within this of a voxel's centre along the ray ends in it (m), at least half a voxel's
+  /// diagonal: sensor noise (1-3 mm for a Kinect at 1 m) on top of the voxel's own depth.
+  double surface_tolerance = 0.004;
+  /// Voxels in the region at most this many (the grid is coarsened to fit): bounds the memory and
+  /// the time for very large regions.
+  long max_voxels = 4'000'000;
+};
+
+/// The sensed map of one object's region. Model (constant after construction, shared read-only).
+class SensedSpace {
+ public:
+  SensedSpace() = default;  ///< no sensor: every point unknown, no region
+  /// Casts the views' rays through `region` (world frame; grown by nothing: pass the object's
+  /// bounds grown by options.margin, see object_region()). Throws std::invalid_argument for an
+  /// empty or non-finite region, a non-positive resolution, or an invalid camera.
+  SensedSpace(const std::vector<DepthView>& views, const Eigen::AlignedBox3d& region,
+              const SensedSpaceOptions& options = {});
+
+  bool empty() const { return cells_.empty(); }
+  /// The voxel grid's box (the region, snapped outwards to multiples of the resolution).
+  const Eigen::AlignedBox3d& region() const { return box_; }
+  double resolution() const { return resolution_; }
+  Eigen::Vector3i dims() const { return dims_; }
+
+  /// The state of the voxel holding p; kUnknown outside the region (see far_free()).
+  Sensed at(const Eigen::Vector3d& p) const;
+  /// What the robot may assume at p: inside the region, at(p); outside it, free (the rule above).
+  bool free_for_robot(const Eigen::Vector3d& p) const;
+  /// Voxels per state: unknown, free, occupied.
+  std::array<long, 3> counts() const;
+
+  /// The centres of the voxels the robot must not enter: every unknown voxel of the region, and
+  /// occupied voxels at or below `support` (n.p + c <= margin, n up: the table the object stands
+  /// on, whose surface the object's own mesh leaves out). Measured surfaces above it are modelled
+  /// by the depth surface mesh (depth_surface.hpp), which is exact, and are not repeated here.
+  std::vector<Eigen::Vector3d> blocked_voxels(
+      const std::optional<Eigen::Vector4d>& support = std::nullopt, double margin = 0.005) const;
+
+  /// Voxel centre of grid index (i, j, k).
+  Eigen::Vector3d centre(int i, int j, int k) const {
+    return box_.min() + resolution_ * Eigen::Vector3d(i + 0.5, j + 0.5, k + 0.5);
+  }
+  Sensed cell(int i, int j, int k) const {
+    return static_cast<Sensed>(
+        cells_[(static_cast<std::size_t>(k) * dims_.y() + j) * dims_.x() + i]);
+  }
+
+ private:
+  Eigen::AlignedBox3d box_;
+  double resolution_ = 0.0;
+  Eigen::Vector3i dims_ = Eigen::Vector3i::Zero();
+  std::vector<std::uint8_t> cells_;  // x fastest, then y, then z
+};
+
+/// The object's region: `bounds` grown by `margin` on every side.
+Eigen::AlignedBox3d object_region(const Eigen::AlignedBox3d& bounds, double margin);
+
+}  // namespace claspplan::perception

@@ -1,0 +1,130 @@
+// The sensed space (perception/sensed_space.hpp): free in front of what a camera measured,
+// occupied at it, unknown behind it and outside the image; scattered dropouts do not hide free
+// space; what the robot may not enter.
+#include "perception/sensed_space.hpp"
+
+#include <gtest/gtest.h>
+
+#include "examples/objects.hpp"
+#include "perception/depth_render.hpp"
+
+namespace claspplan::perception {
+namespace {
+
+// A 10 cm sphere at the origin seen by one camera 0.6 m away along -x, looking along +x.
+struct OneView {
+  TriangleMesh sphere = objects::sphere_mesh(0.1);
+  DepthView view;
+  OneView(const DepthNoise& noise = {}) {
+    view.camera = look_at_camera(Eigen::Vector3d(-0.6, 0, 0), Eigen::Vector3d::Zero(), 0.3);
+    view.image = render_depth(sphere, view.camera, noise);
+  }
+  Eigen::AlignedBox3d region() const {
+    return Eigen::AlignedBox3d(Eigen::Vector3d(-0.2, -0.2, -0.2), Eigen::Vector3d(0.2, 0.2, 0.2));
+  }
+};
+
+// A wall 0.3 m behind the sphere, across the whole view.
+TriangleMesh wall_behind() {
+  TriangleMesh wall;
+  wall.vertices = {{0.3, -1, -1}, {0.3, 1, -1}, {0.3, 1, 1}, {0.3, -1, 1}};
+  wall.triangles = {{0, 1, 2}, {0, 2, 3}};
+  return wall;
+}
+
+TEST(SensedSpace, FreeBeforeTheSurfaceOccupiedAtItUnknownBehind) {
+  const OneView scene;
+  const SensedSpace space({scene.view}, scene.region());
+  EXPECT_EQ(space.at(Eigen::Vector3d(-0.15, 0, 0)), Sensed::kFree);
+  EXPECT_EQ(space.at(Eigen::Vector3d(-0.1, 0, 0)), Sensed::kOccupied);
+  EXPECT_EQ(space.at(Eigen::Vector3d(0, 0, 0)), Sensed::kUnknown);           // inside
+  EXPECT_EQ(space.at(Eigen::Vector3d(0.15, 0, 0)), Sensed::kUnknown);        // in its shadow
+  EXPECT_EQ(space.at(Eigen::Vector3d(0.15, 0.15, 0.15)), Sensed::kUnknown);  // no background
+  EXPECT_EQ(space.at(Eigen::Vector3d(-0.15, 0.15, 0)), Sensed::kUnknown);    // ray hit nothing
+  // Outside the region: unknown, but free for the robot (the rule for space far from the object).
+  EXPECT_EQ(space.at(Eigen::Vector3d(1, 0, 0)), Sensed::kUnknown);
+  EXPECT_TRUE(space.free_for_robot(Eigen::Vector3d(1, 0, 0)));
+  EXPECT_FALSE(space.free_for_robot(Eigen::Vector3d(0, 0, 0)));
+}
+
+TEST(SensedSpace, ABackgroundMakesTheSpaceAroundTheObjectFree) {
+  OneView scene;
+  append_mesh(scene.sphere, wall_behind());  // rays beside the sphere now end on it
+  scene.view.image = render_depth(scene.sphere, scene.view.camera);
+  const SensedSpace space({scene.view}, scene.region());
+  EXPECT_EQ(space.at(Eigen::Vector3d(0.15, 0.15, 0.15)), Sensed::kFree);
+  EXPECT_EQ(space.at(Eigen::Vector3d(-0.15, 0.15, 0)), Sensed::kFree);
+  EXPECT_EQ(space.at(Eigen::Vector3d(0.15, 0, 0)), Sensed::kUnknown);  // the shadow stays
+}
+
+TEST(SensedSpace, ScatteredDropoutsDoNotHideFreeSpace) {
+  OneView clean;
+  append_mesh(clean.sphere, wall_behind());
+  clean.view.image = render_depth(clean.sphere, clean.view.camera);
+  DepthView noisy = clean.view;
+  DepthNoise noise;
+  noise.dropout = 0.02;
+  noisy.image = render_depth(clean.sphere, clean.view.camera, noise);
+  const auto a = SensedSpace({clean.view}, clean.region()).counts();
+  const auto b = SensedSpace({noisy}, clean.region()).counts();
+  EXPECT_GT(b[1], 0.97 * a[1]) << "free voxels: " << a[1] << " without dropouts, " << b[1];
+}
+
+TEST(SensedSpace, TwoViewsLeaveOnlyTheJointShadowUnknown) {
+  OneView front;
+  front.view.camera.no_reading_is_free = true;  // the sphere is the whole scene
+  DepthView side;
+  side.camera = look_at_camera(Eigen::Vector3d(0, -0.6, 0), Eigen::Vector3d::Zero(), 0.3);
+  side.camera.no_reading_is_free = true;
+  side.image = render_depth(front.sphere, side.camera);
+  const SensedSpace one({front.view}, front.region());
+  const SensedSpace two({front.view, side}, front.region());
+  // Behind the sphere for the first camera, in plain sight of the second.
+  const Eigen::Vector3d p(0.15, -0.12, 0);
+  EXPECT_EQ(one.at(p), Sensed::kUnknown);
+  EXPECT_NE(two.at(p), Sensed::kUnknown);
+  EXPECT_LT(two.counts()[0], one.counts()[0]);
+  EXPECT_EQ(two.at(Eigen::Vector3d::Zero()), Sensed::kUnknown);  // the inside is never seen
+}
+
+TEST(SensedSpace, BlockedVoxelsAreTheUnknownOnesAndTheSupportsSurface) {
+  const OneView scene;
+  const SensedSpace space({scene.view}, scene.region());
+  const auto n = space.counts();
+  const auto blocked = space.blocked_voxels();
+  EXPECT_EQ(static_cast<long>(blocked.size()), n[0]);
+  for (const auto& c : blocked) EXPECT_EQ(space.at(c), Sensed::kUnknown);
+  // With a support at z = 0.05 (n up), the occupied voxels below it join them.
+  const auto with_support = space.blocked_voxels(Eigen::Vector4d(0, 0, 1, -0.05));
+  EXPECT_GT(with_support.size(), blocked.size());
+  for (const auto& c : with_support)
+    EXPECT_TRUE(space.at(c) == Sensed::kUnknown || c.z() <= 0.05 + 0.005 + 1e-9);
+}
+
+TEST(SensedSpace, GridIsSnappedAndCoarsenedToItsBudget) {
+  const OneView scene;
+  SensedSpaceOptions o;
+  o.resolution = 0.004;
+  o.max_voxels = 20000;
+  const SensedSpace space({scene.view}, scene.region(), o);
+  EXPECT_GT(space.resolution(), 0.004);
+  EXPECT_LE(static_cast<long>(space.dims().prod()), o.max_voxels);
+  EXPECT_TRUE(space.region().contains(scene.region().min()));
+  EXPECT_TRUE(space.region().contains(scene.region().max()));
+  const Eigen::Vector3d lo = space.region().min() / space.resolution();
+  EXPECT_NEAR(lo.x(), std::round(lo.x()), 1e-6);
+}
+
+TEST(SensedSpace, WithoutViewsEverythingIsUnknownAndBadRegionsThrow) {
+  const OneView scene;
+  const SensedSpace blind({}, scene.region());
+  EXPECT_EQ(blind.counts()[1] + blind.counts()[2], 0);
+  EXPECT_TRUE(SensedSpace().empty());
+  EXPECT_THROW(SensedSpace({scene.view}, Eigen::AlignedBox3d()), std::invalid_argument);
+  SensedSpaceOptions bad;
+  bad.resolution = 0.0;
+  EXPECT_THROW(SensedSpace({scene.view}, scene.region(), bad), std::invalid_argument);
+}
+
+}  // namespace
+}  // namespace claspplan::perception
