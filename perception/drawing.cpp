@@ -131,7 +131,7 @@ void draw_sensed_space_png(const SensedSpace& space, const Eigen::Vector3d& cent
   const cv::Scalar colour[] = {cv::Scalar(60, 150, 245), cv::Scalar(245, 245, 245),
                                cv::Scalar(120, 50, 20)};  // unknown, free, occupied (BGR)
   for (int panel = 0; panel < 3; ++panel) {
-    const auto [a, b, c] = axes[panel];
+    const int a = axes[panel][0], b = axes[panel][1], c = axes[panel][2];
     const int x0 = kGap + panel * (kPanel + kGap), y0 = kTop;
     const Eigen::Vector2d lo(box.min()[a], box.min()[b]);
     for (int py = 0; py < kPanel; ++py)

@@ -316,14 +316,10 @@ ObjectModel build_object_model(const PerceptionInputs& in, const PerceptionOptio
   say(o, fmt("perception: beta1 = %.0f (%.0f Dijkstra roots)", basis.beta1, basis.roots));
 
   t = Clock::now();
-  if (!m.views.empty()) {
+  // Cast on demand: ranking asks about a few places, the planner casts the whole region.
+  if (!m.views.empty())
     m.sensed = std::make_shared<const SensedSpace>(
         m.views, object_region(bounds(m.cloud), o.sensed.margin), o.sensed);
-    const auto n = m.sensed->counts();
-    say(o, fmt("perception: sensed space %.0f%% free, %.0f%% occupied, %.0f%% unknown",
-               100.0 * n[1] / (n[0] + n[1] + n[2]), 100.0 * n[2] / (n[0] + n[1] + n[2]),
-               100.0 * n[0] / (n[0] + n[1] + n[2])));
-  }
   m.sensor_origin_missing = !in.clouds.empty() && !m.sensed;
   m.timings.sensed = seconds_since(t);
 

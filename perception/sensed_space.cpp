@@ -1,8 +1,11 @@
 #include "perception/sensed_space.hpp"
 
 #include <algorithm>
+#include <atomic>
 #include <cmath>
 #include <limits>
+#include <mutex>
+#include <optional>
 #include <stdexcept>
 #include <string>
 #include <utility>
@@ -90,37 +93,30 @@ class DepthRanges {
 // A footprint with readings on fewer of its pixels says nothing (see DepthRanges).
 constexpr double kMinValidShare = 0.5;
 
-struct ViewCaster {
-  const CameraModel& camera;
-  bool empty_free;    // a pixel without a reading saw nothing (a synthetic scene)
-  Eigen::Matrix3d R;  // camera <- world
-  Eigen::Vector3d t;
-  DepthRanges ranges;
-
-  ViewCaster(const DepthView& view)
-      : camera(view.camera),
-        empty_free(view.camera.no_reading_is_free),
-        R(view.camera.T_world_camera.linear().transpose()),
-        t(-R * view.camera.T_world_camera.translation()),
-        ranges(view.image) {}
-
-  // What this view says of a voxel centred at p, with half-diagonal h.
-  // The voxel's corners relative to its centre, in the camera frame (set by corners()).
-  std::array<Eigen::Vector3d, 8> corner;
-
-  void corners(double half_edge) {
+// One view's rays, cast backwards. Before cast_all() a voxel's footprint is scanned pixel by
+// pixel (a few queries of loop ranking); for the whole grid the image's range tables are built
+// first. Both read the same rectangle the same way: the same answers.
+class ViewCaster {
+ public:
+  ViewCaster(const DepthView& view, double half_edge)
+      : view_(view),
+        R_(view.camera.T_world_camera.linear().transpose()),
+        t_(-R_ * view.camera.T_world_camera.translation()) {
     for (int c = 0; c < 8; ++c)
-      corner[c] = R * Eigen::Vector3d((c & 1 ? 1 : -1) * half_edge, (c & 2 ? 1 : -1) * half_edge,
-                                      (c & 4 ? 1 : -1) * half_edge);
+      corner_[c] = R_ * Eigen::Vector3d((c & 1 ? 1 : -1) * half_edge, (c & 2 ? 1 : -1) * half_edge,
+                                        (c & 4 ? 1 : -1) * half_edge);
   }
+
+  void build_ranges() { ranges_.emplace(view_.image); }
 
   // What this view says of the voxel centred at p. Its footprint is the pixel rectangle around its
   // 8 corners' projections (the cube's image lies inside it), its depth span their z range.
   Sensed classify(const Eigen::Vector3d& p, double tolerance) const {
-    const Eigen::Vector3d q = R * p + t;
+    const CameraModel& camera = view_.camera;
+    const Eigen::Vector3d q = R_ * p + t_;
     double u0 = INFINITY, u1 = -INFINITY, v0 = INFINITY, v1 = -INFINITY;
     double z0 = INFINITY, z1 = -INFINITY;
-    for (const auto& c : corner) {
+    for (const auto& c : corner_) {
       const Eigen::Vector3d k = q + c;
       if (k.z() <= 1e-6) return Sensed::kUnknown;  // reaches behind the camera
       const double u = camera.fx * k.x() / k.z() + camera.cx;
@@ -137,19 +133,64 @@ struct ViewCaster {
     const int iu = static_cast<int>(std::floor(u + 0.5)),
               iv = static_cast<int>(std::floor(v + 0.5));
     if (iu >= 0 && iv >= 0 && iu < camera.width && iv < camera.height) {
-      const float d = ranges.pixel(iu, iv);
+      const float d = reading(iu, iv);
       if (d > 0.0f && d >= z0 - tolerance && d <= z1 + tolerance) return Sensed::kOccupied;
     }
     // Free only when the whole footprint is in the image and every ray in it went past the voxel.
     if (pu0 < 0 || pv0 < 0 || pu1 >= camera.width || pv1 >= camera.height) return Sensed::kUnknown;
-    const auto [nearest, valid] = ranges.nearest(static_cast<int>(pu0), static_cast<int>(pu1),
-                                                 static_cast<int>(pv0), static_cast<int>(pv1));
-    return (empty_free || valid >= kMinValidShare) && nearest > z1 ? Sensed::kFree
-                                                                   : Sensed::kUnknown;
+    const auto [nearest, valid] = footprint(static_cast<int>(pu0), static_cast<int>(pu1),
+                                            static_cast<int>(pv0), static_cast<int>(pv1));
+    return (camera.no_reading_is_free || valid >= kMinValidShare) && nearest > z1
+               ? Sensed::kFree
+               : Sensed::kUnknown;
   }
+
+ private:
+  float reading(int u, int v) const {
+    const float d = view_.image.at(u, v);
+    return std::isfinite(d) && d > 0.0f ? d : 0.0f;
+  }
+
+  // The nearest reading and the share of pixels with one over [u0, u1] x [v0, v1].
+  std::pair<float, double> footprint(int u0, int u1, int v0, int v1) const {
+    if (ranges_) return ranges_->nearest(u0, u1, v0, v1);
+    float m = std::numeric_limits<float>::infinity();
+    int valid = 0;
+    for (int v = v0; v <= v1; ++v)
+      for (int u = u0; u <= u1; ++u) {
+        const float d = reading(u, v);
+        if (d > 0.0f) m = std::min(m, d), ++valid;
+      }
+    return {m, valid / (static_cast<double>(u1 - u0 + 1) * (v1 - v0 + 1))};
+  }
+
+  DepthView view_;
+  Eigen::Matrix3d R_;  // camera <- world
+  Eigen::Vector3d t_;
+  std::array<Eigen::Vector3d, 8> corner_;  // the voxel's corners from its centre, camera frame
+  std::optional<DepthRanges> ranges_;
 };
 
 }  // namespace
+
+struct SensedSpace::Casting {
+  std::vector<ViewCaster> views;
+  std::once_flag once;
+  std::atomic<bool> done{false};
+  std::vector<std::uint8_t> cells;  // x fastest, then y, then z
+
+  // Every view's verdict on the voxel centred at p: occupied if any saw a surface in it, else
+  // free if any saw through it, else unknown.
+  Sensed classify(const Eigen::Vector3d& p, double tolerance) const {
+    Sensed s = Sensed::kUnknown;
+    for (const auto& v : views) {
+      const Sensed here = v.classify(p, tolerance);
+      if (here == Sensed::kOccupied) return here;
+      if (here == Sensed::kFree) s = here;
+    }
+    return s;
+  }
+};
 
 SensedSpace::SensedSpace(const std::vector<DepthView>& views, const Eigen::AlignedBox3d& region,
                          const SensedSpaceOptions& o) {
@@ -171,49 +212,57 @@ SensedSpace::SensedSpace(const std::vector<DepthView>& views, const Eigen::Align
     if (static_cast<double>(dims_.x()) * dims_.y() * dims_.z() <= o.max_voxels) break;
     resolution_ *= 1.25;
   }
-  cells_.assign(static_cast<std::size_t>(dims_.x()) * dims_.y() * dims_.z(),
-                static_cast<std::uint8_t>(Sensed::kUnknown));
-  if (views.empty()) return;
+  tolerance_ = o.surface_tolerance;
+  casting_ = std::make_shared<Casting>();
+  for (const auto& view : views) casting_->views.emplace_back(view, 0.5 * resolution_);
+}
 
-  std::vector<ViewCaster> casters;
-  for (const auto& view : views) {
-    casters.emplace_back(view);
-    casters.back().corners(0.5 * resolution_);
-  }
-  parallel_chunks(static_cast<std::size_t>(dims_.z()), 0, [&](std::size_t k0, std::size_t k1) {
-    for (std::size_t k = k0; k < k1; ++k)
-      for (int j = 0; j < dims_.y(); ++j)
-        for (int i = 0; i < dims_.x(); ++i) {
-          const Eigen::Vector3d p = centre(i, j, static_cast<int>(k));
-          Sensed s = Sensed::kUnknown;
-          for (const auto& c : casters) {
-            const Sensed here = c.classify(p, o.surface_tolerance);
-            if (here == Sensed::kOccupied) {
-              s = here;
-              break;
-            }
-            if (here == Sensed::kFree) s = here;
-          }
-          cells_[(k * dims_.y() + j) * dims_.x() + i] = static_cast<std::uint8_t>(s);
-        }
+const std::vector<std::uint8_t>& SensedSpace::cells() const {
+  Casting& c = *casting_;
+  std::call_once(c.once, [&] {
+    c.cells.assign(static_cast<std::size_t>(dims_.x()) * dims_.y() * dims_.z(),
+                   static_cast<std::uint8_t>(Sensed::kUnknown));
+    if (!c.views.empty()) {
+      parallel_chunks(c.views.size(), 0, [&](std::size_t b, std::size_t e) {
+        for (std::size_t i = b; i < e; ++i) c.views[i].build_ranges();
+      });
+      parallel_chunks(static_cast<std::size_t>(dims_.z()), 0, [&](std::size_t k0, std::size_t k1) {
+        for (std::size_t k = k0; k < k1; ++k)
+          for (int j = 0; j < dims_.y(); ++j)
+            for (int i = 0; i < dims_.x(); ++i)
+              c.cells[(k * dims_.y() + j) * dims_.x() + i] = static_cast<std::uint8_t>(
+                  c.classify(centre(i, j, static_cast<int>(k)), tolerance_));
+      });
+    }
+    c.done.store(true, std::memory_order_release);
   });
+  return c.cells;
+}
+
+Sensed SensedSpace::cell(int i, int j, int k) const {
+  const Casting& c = *casting_;
+  if (c.done.load(std::memory_order_acquire))
+    return static_cast<Sensed>(
+        c.cells[(static_cast<std::size_t>(k) * dims_.y() + j) * dims_.x() + i]);
+  return c.classify(centre(i, j, k), tolerance_);
 }
 
 Sensed SensedSpace::at(const Eigen::Vector3d& p) const {
-  if (cells_.empty() || !box_.contains(p)) return Sensed::kUnknown;
+  if (empty() || !box_.contains(p)) return Sensed::kUnknown;
   const Eigen::Vector3i idx = ((p - box_.min()) / resolution_).array().floor().cast<int>();
   const Eigen::Vector3i c = idx.cwiseMax(0).cwiseMin(dims_ - Eigen::Vector3i::Ones());
   return cell(c.x(), c.y(), c.z());
 }
 
 bool SensedSpace::free_for_robot(const Eigen::Vector3d& p) const {
-  if (cells_.empty() || !box_.contains(p)) return true;
+  if (empty() || !box_.contains(p)) return true;
   return at(p) == Sensed::kFree;
 }
 
 std::array<long, 3> SensedSpace::counts() const {
   std::array<long, 3> n{0, 0, 0};
-  for (std::uint8_t c : cells_) ++n[c];
+  if (empty()) return n;
+  for (std::uint8_t c : cells()) ++n[c];
   return n;
 }
 
@@ -227,6 +276,8 @@ std::vector<Eigen::Vector3d> SensedSpace::blocked_voxels(
     offset = (*support)[3] / len;
   }
   std::vector<Eigen::Vector3d> out;
+  if (empty()) return out;
+  cells();  // the whole grid, cast once
   for (int k = 0; k < dims_.z(); ++k)
     for (int j = 0; j < dims_.y(); ++j)
       for (int i = 0; i < dims_.x(); ++i) {

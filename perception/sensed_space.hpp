@@ -29,6 +29,7 @@
 
 #include <array>
 #include <cstdint>
+#include <memory>
 #include <optional>
 #include <vector>
 
@@ -58,19 +59,20 @@ struct SensedSpaceOptions {
 class SensedSpace {
  public:
   SensedSpace() = default;  ///< no sensor: every point unknown, no region
-  /// Casts the views' rays through `region` (world frame; grown by nothing: pass the object's
-  /// bounds grown by options.margin, see object_region()). Throws std::invalid_argument for an
-  /// empty or non-finite region, a non-positive resolution, or an invalid camera.
+  /// The views' rays through `region` (world frame; grown by nothing: pass the object's bounds
+  /// grown by options.margin, see object_region()), cast when first needed. Throws
+  /// std::invalid_argument for an empty or non-finite region, a non-positive resolution, or an
+  /// invalid camera.
   SensedSpace(const std::vector<DepthView>& views, const Eigen::AlignedBox3d& region,
               const SensedSpaceOptions& options = {});
 
-  bool empty() const { return cells_.empty(); }
+  bool empty() const { return !casting_; }
   /// The voxel grid's box (the region, snapped outwards to multiples of the resolution).
   const Eigen::AlignedBox3d& region() const { return box_; }
   double resolution() const { return resolution_; }
   Eigen::Vector3i dims() const { return dims_; }
 
-  /// The state of the voxel holding p; kUnknown outside the region (see far_free()).
+  /// The state of the voxel holding p; kUnknown outside the region (see free_for_robot()).
   Sensed at(const Eigen::Vector3d& p) const;
   /// What the robot may assume at p: inside the region, at(p); outside it, free (the rule above).
   bool free_for_robot(const Eigen::Vector3d& p) const;
@@ -88,16 +90,20 @@ class SensedSpace {
   Eigen::Vector3d centre(int i, int j, int k) const {
     return box_.min() + resolution_ * Eigen::Vector3d(i + 0.5, j + 0.5, k + 0.5);
   }
-  Sensed cell(int i, int j, int k) const {
-    return static_cast<Sensed>(
-        cells_[(static_cast<std::size_t>(k) * dims_.y() + j) * dims_.x() + i]);
-  }
+  /// The state of voxel (i, j, k).
+  Sensed cell(int i, int j, int k) const;
 
  private:
+  struct Casting;  // the views, and the grid once cast
+  // The whole grid, cast on first need (counts(), blocked_voxels()), once, on all cores; point
+  // queries before that classify their voxel from the views directly, with the same rule.
+  const std::vector<std::uint8_t>& cells() const;
+
   Eigen::AlignedBox3d box_;
   double resolution_ = 0.0;
+  double tolerance_ = 0.0;
   Eigen::Vector3i dims_ = Eigen::Vector3i::Zero();
-  std::vector<std::uint8_t> cells_;  // x fastest, then y, then z
+  std::shared_ptr<Casting> casting_;  // null: no sensor (default-constructed)
 };
 
 /// The object's region: `bounds` grown by `margin` on every side.

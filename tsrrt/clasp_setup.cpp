@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <cstdio>
 #include <numeric>
 #include <stdexcept>
 #include <utility>
@@ -275,6 +276,14 @@ ClaspResult plan_clasp(const ClaspRequest& request) {
     r.unseen_edge = r.object.sensed->resolution();
     r.unseen_voxels = without_robot(
         model, r.start, r.object.sensed->blocked_voxels(r.object.support_plane), r.unseen_edge);
+    const auto n = r.object.sensed->counts();
+    const double all = static_cast<double>(n[0] + n[1] + n[2]) / 100.0;
+    char line[160];
+    std::snprintf(line, sizeof line,
+                  "sensed space near the object: %.0f%% free, %.0f%% occupied, %.0f%% unknown "
+                  "(%zu voxels the robot may not enter)",
+                  n[1] / all, n[2] / all, n[0] / all, r.unseen_voxels.size());
+    say(line);
   }
   object_collision_mesh(r.object, loop, perception.workspace, request.name,
                         r.collision_mesh.vertices, r.collision_mesh.triangles);
