@@ -5,8 +5,9 @@
 // planner collided with them. Collisions therefore use the surface the sensor measured: each depth
 // image's pixel grid, triangulated only where the depth is continuous.
 //
-// Unseen space: the mesh models only seen surface; everything else (the back of the object, the
-// inside of a handle no camera looked into, gaps along silhouettes) is treated as free. The planner
+// Unseen space: the mesh models only seen surface. For the robot's motions the space near the
+// object that no camera saw is blocked separately (sensed_space.hpp's unknown voxels); for the
+// secure-clasp check the object is only what was seen (an unseen part cannot hold it). The planner
 // adds a tube along the clasped loop (tsrrt::loop_tube), so the loop itself is always material.
 // This keeps the secure-clasp check conservative: missing geometry only makes the object easier
 // to escape from the hand, and a finger can never pass through the loop.

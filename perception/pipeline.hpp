@@ -2,10 +2,12 @@
 // clouds, meshes) -> object points -> K_d -> shortest loops -> ranked loops -> clasp targets.
 //
 // Steps, in order:
-//  1. Depth views: back-projection, world transform, crop to the workspace box, supporting-plane
-//     removal (RANSAC), statistical outlier removal (both PCL). All views are merged first.
-//     Clouds are used as read; meshes are sampled uniformly by area with 4 N points, over the whole
-//     surface or only where visible from the --view positions.
+//  1. Depth views (clouds with a sensor origin are views too: add_cloud): back-projection, world
+//     transform, crop to the workspace box, supporting-plane removal (RANSAC), statistical outlier
+//     removal (both PCL). All views are merged first; clouds without an origin join them there.
+//     Meshes are sampled uniformly by area with 4 N points, over the whole surface or only where
+//     visible from the --view positions. The views' sensed space (sensed_space.hpp) is set up
+//     over the object's region, cast when the ranking or the planner asks.
 //  2. Down-sampling to N points: a seeded random subset of at most 4 N points; depth points are
 //     first thinned evenly over space to 3 N (a random pool of 16 N, one point per grid cell:
 //     a thin handle seen by few pixels keeps its points), before the outlier filter, to bound its
