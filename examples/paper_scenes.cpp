@@ -156,6 +156,13 @@ PaperScene paper_scene(const std::string& name) {
   // planner moves the hand only through space a camera saw free (issue 33).
   const Vector3d behind = Vector3d(0.7, 0.0, elevation).normalized();
   s.cameras.push_back(cropped_camera(target + distance * behind, target, seen));
+  // The obstructed chair's loop under the seat (Fig. 7) opens into the space below the seat, which
+  // the seat shades from the three above: a fourth camera looks in from the side, below the seat.
+  if (obstructed) {
+    const Vector3d side = Vector3d(0.0, 1.0, 0.05).normalized();
+    const Vector3d under(target.x(), target.y(), at.table + 0.5 * (s.near.z() - at.table));
+    s.cameras.push_back(cropped_camera(under + distance * side, under, seen));
+  }
   return s;
 }
 
