@@ -125,10 +125,8 @@ void run_search(const ClaspScene& scene, const Say& say, ClaspResult& r) {
       check.secure ? "verified clasp" : "the clasp failed verification: " + insecure_reason(check);
 }
 
-// Distance from p to a collision shape placed at `pose` (0 inside).
-double shape_distance(const robots::CollisionShape& s, const Eigen::Isometry3d& pose,
-                      const Eigen::Vector3d& p) {
-  const Eigen::Vector3d local = pose.inverse() * p;
+// Distance to a collision shape from a point in the shape's frame (0 inside).
+double shape_distance(const robots::CollisionShape& s, const Eigen::Vector3d& local) {
   using Type = robots::CollisionShape::Type;
   switch (s.type) {
     case Type::kBox:
@@ -157,11 +155,12 @@ std::vector<Eigen::Vector3d> without_robot(const robots::RobotModel& model,
   robots::RobotData data(model);
   robots::forward_kinematics(model, start, data);
   const double reach = 0.5 * std::sqrt(3.0) * edge;  // a voxel within this may touch the shape
-  std::vector<Eigen::Isometry3d> poses;
-  for (const auto& s : model.shapes) poses.push_back(data.link_poses[s.link] * s.origin);
+  std::vector<Eigen::Isometry3d> to_shape;           // each shape's frame from the world's
+  for (const auto& s : model.shapes)
+    to_shape.push_back((data.link_poses[s.link] * s.origin).inverse());
   const auto filled = [&](const Eigen::Vector3d& c) {
     for (std::size_t k = 0; k < model.shapes.size(); ++k)
-      if (shape_distance(model.shapes[k], poses[k], c) <= reach) return true;
+      if (shape_distance(model.shapes[k], to_shape[k] * c) <= reach) return true;
     return false;
   };
   voxels.erase(std::remove_if(voxels.begin(), voxels.end(), filled), voxels.end());
