@@ -195,6 +195,7 @@ RunOutcome run_scenario(const Scenario& scenario, const RunOptions& options) {
   const tsrrt::ClaspResult r = tsrrt::plan_clasp(request);
 
   timing["perception"] = input_seconds + r.timings.perception;
+  timing["scene"] = r.timings.scene;
   result["hand"] = {{"finger_thickness", r.hand.finger_thickness},
                     {"closed_aperture", r.hand.closed_aperture}};
   json& loops_json = result["loops"] = json::array();

@@ -261,8 +261,10 @@ ClaspResult plan_clasp(const ClaspRequest& request) {
   auto t = Clock::now();
   r.object = perception::build_object_model(request.object, perception);
   r.timings.perception = since(t);
+  t = Clock::now();
   r.loop = choose_loop_with_room(model, request, environment, say, r);
   if (r.loop < 0) {
+    r.timings.scene = since(t);
     r.status = ClaspStatus::kNoClaspableLoop;
     r.reason = no_loop_reason(r.object);
     return r;
@@ -288,6 +290,8 @@ ClaspResult plan_clasp(const ClaspRequest& request) {
                         r.collision_mesh.vertices, r.collision_mesh.triangles);
   robots::CollisionWorld world = make_collision_world(model, r);
   start_touches(world);
+
+  r.timings.scene = since(t);
 
   servo::ClaspController controller(model, loop.points, r.targets, request.controller);
   const double goal_linking =

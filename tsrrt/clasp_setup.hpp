@@ -200,6 +200,9 @@ struct ClaspTaskState {
 /// Seconds per phase (wall clock; not part of any determinism guarantee).
 struct ClaspTimings {
   double perception = 0.0;
+  /// Between perception and the search: the loop's choice, the whole sensed region cast and its
+  /// unseen voxels, the object's collision mesh and the collision world.
+  double scene = 0.0;
   double controller = 0.0;    ///< kControllerOnly: the controller run
   double search = 0.0;        ///< kPlan: the whole TS-RRT search, closing and verification included
   double planning = 0.0;      ///< ... of it the tree search alone

@@ -49,7 +49,11 @@ TEST_P(ControllerRing, ClaspsAnUnobstructedRingHandle) {
   EXPECT_EQ(result["robot"], "kr5_" + hand);
   EXPECT_EQ(result["final_q"], result["waypoints"].back());
   EXPECT_EQ(result["finger_virtual_linking"].size(), result["finger_open_linking"].size());
-  EXPECT_TRUE(std::filesystem::exists(dir.file("out/timing.json")));
+  const json timing = read_json(dir.file("out/timing.json"));
+  for (const char* phase : {"perception", "scene", "controller", "total"}) {
+    ASSERT_TRUE(timing.contains(phase)) << phase;
+    EXPECT_LE(timing[phase].get<double>(), timing["total"].get<double>()) << phase;
+  }
   EXPECT_FALSE(result.contains("seconds"));  // timings stay out of result.json
 
   // VLk rises through the closing phase: from the first step that links on, it never drops.

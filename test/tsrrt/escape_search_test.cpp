@@ -1,13 +1,15 @@
 // The escape stages of the secure-clasp check (tsrrt/escape_search.hpp) on the capsule hand
 // (test/support/capsule_hand.hpp): a ring caged by the closed fist holds in every stage; a ring
 // hung on the open hand's palm bar (it can only leave upward, over a fingertip) is freed by the
-// escape search and by the approach pull but held under gravity.
+// escape search and by the approach pull but held under gravity; a hand reaching down with its
+// thumb hooked into a cup's mouth passes the random motions and is freed by each escape stage.
 #include "tsrrt/escape_search.hpp"
 
 #include <cstring>
 
 #include <gtest/gtest.h>
 
+#include "examples/objects.hpp"
 #include "robots/collision_world.hpp"
 #include "robots/kinematics.hpp"
 #include "test/support/capsule_hand.hpp"
@@ -138,6 +140,60 @@ TEST(EscapeSearch, GravityHoldsWhatCanOnlyLeaveUpward) {
   EXPECT_EQ(beside.iterations, 0);  // no search needed
   ASSERT_TRUE(beside.escape);
   EXPECT_LT(beside.escape->translation().z(), -0.1);
+}
+
+// The hand pointing down (test::capsule_hand(true)), fingers straight, the thumb down in an
+// upright cup's mouth and the finger outside its wall: the paper's "secure" hook on a container
+// (issue: mouths are clasped). The loop is the rim, which the finger curve links, but the cup hangs
+// on nothing: it slides off the thumb downward.
+Ring cup_hooked_on_thumb() {
+  objects::Container c;  // radius 4.5 cm, wall 4 mm, 10 cm high, no handle
+  const Eigen::Vector3d at(-0.035, 0, -0.02 - c.height);  // the thumb on the axis, rim 2 cm below
+  const perception::TriangleMesh mesh = objects::container(c);
+  Ring cup;
+  for (const auto& v : mesh.vertices) cup.mesh.vertices.push_back(v + at);
+  for (const auto& t : mesh.triangles) cup.mesh.triangles.emplace_back(t[0], t[1], t[2]);
+  const double rim = c.radius - 0.5 * c.wall;
+  for (int i = 0; i < 48; ++i) {
+    const double u = 2.0 * M_PI * i / 48;
+    cup.loop.push_back(at + Eigen::Vector3d(rim * std::cos(u), rim * std::sin(u), c.height));
+  }
+  return cup;
+}
+
+TEST(EscapeSearch, AThumbHookedIntoAContainersMouthIsRejectedByEveryEscapeStage) {
+  const robots::RobotModel m = test::capsule_hand(true);
+  const Eigen::VectorXd q = straight_fingers(m);
+  const Ring cup = cup_hooked_on_thumb();
+  SecureClaspOptions o = short_random_motions();
+  o.escape_stages = false;
+  const SecureClaspReport without = check(m, cup, q, o);
+  ASSERT_FALSE(without.start_in_collision);
+  ASSERT_EQ(without.virtual_linking.size(), 1u);
+  EXPECT_GT(std::abs(without.virtual_linking[0]), 0.5);  // the rim is linked: it looks like a clasp
+  // ... and passes random motions cut short (the paper's 10 x 500 find this straight slide; the
+  // DLR hand's thumb in a pitcher's neck, whose way out turns, they did not).
+  EXPECT_TRUE(without.secure);
+
+  // Each stage on its own frees the cup, to where its rim is 30 cm from the finger curves; under
+  // gravity and along the approach (both world -z here) by a straight pull that never lifts it.
+  for (const EscapeStage s :
+       {EscapeStage::kEscapeSearch, EscapeStage::kGravity, EscapeStage::kApproach}) {
+    const VerificationStage v = stage(s, m, cup, q);
+    EXPECT_TRUE(v.ran) << v.name;
+    EXPECT_FALSE(v.passed) << v.name;
+    EXPECT_FALSE(v.timed_out) << v.name;
+    ASSERT_TRUE(v.escape) << v.name;
+    EXPECT_TRUE(object_free(m, cup, q, *v.escape, 0.3 - 1e-9)) << v.name;
+    if (s != EscapeStage::kEscapeSearch) {
+      EXPECT_LT(v.escape->translation().z(), -0.1) << v.name;
+    }
+  }
+  // The whole check names the first stage that freed it.
+  o.escape_stages = true;
+  const SecureClaspReport r = check(m, cup, q, o);
+  EXPECT_FALSE(r.secure);
+  EXPECT_EQ(r.escape_stage, "escape_search");
 }
 
 TEST(EscapeSearch, SameSeedSameReport) {
