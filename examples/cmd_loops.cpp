@@ -114,7 +114,7 @@ int run_loops(const LoopsOptions& o) {
           {{"length", l.length},
            {"rank", l.rank},
            {"claspable", l.claspable},
-           {"verdict", l.verdict},
+           {"verdict", perception::verdict_name(l.verdict)},
            {"reason", l.reason},
            {"hole_width", l.hole_width},
            {"bar_thickness", std::isfinite(l.bar_thickness) ? nlohmann::json(l.bar_thickness)

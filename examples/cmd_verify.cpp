@@ -7,7 +7,7 @@
 #include "examples/result_file.hpp"
 #include "examples/run_scenario.hpp"
 #include "robots/robot_model.hpp"
-#include "tsrrt/clasp_planning.hpp"
+#include "tsrrt/secure_clasp.hpp"
 #include "tsrrt/clasp_setup.hpp"
 
 namespace claspplan::cli {

@@ -200,13 +200,16 @@ RunOutcome run_scenario(const Scenario& scenario, const RunOptions& options) {
                     {"closed_aperture", r.hand.closed_aperture}};
   json& loops_json = result["loops"] = json::array();
   for (const auto& l : r.object.loops)
-    loops_json.push_back({{"rank", l.rank}, {"verdict", l.verdict}, {"reason", l.reason}});
+    loops_json.push_back(
+        {{"rank", l.rank}, {"verdict", perception::verdict_name(l.verdict)}, {"reason", l.reason}});
   const perception::Loop* loop = r.chosen_loop();
   if (options.pictures && r.object.sensed) {
     // Through the chosen loop, else the first refused for what the sensors saw, else the first.
     const perception::Loop* shown = loop;
     for (const auto& l : r.object.loops)
-      if (!shown && (l.verdict == "unseen_far_side" || l.verdict == "enclosed")) shown = &l;
+      if (!shown && (l.verdict == perception::LoopVerdict::kUnseenFarSide ||
+                     l.verdict == perception::LoopVerdict::kEnclosed))
+        shown = &l;
     if (!shown && !r.object.loops.empty()) shown = &r.object.loops.front();
     perception::draw_sensed_space_png(
         *r.object.sensed, shown ? shown->centre : r.object.sensed->region().center(),

@@ -17,7 +17,7 @@
 #include "perception/pipeline.hpp"
 #include "servo/clasp_controller.hpp"
 #include "servo/controller_run.hpp"
-#include "tsrrt/clasp_planning.hpp"
+#include "tsrrt/clasp_scene.hpp"
 #include "tsrrt/clasp_setup.hpp"
 
 namespace claspplan::cli {

@@ -288,7 +288,7 @@ void assess(Loop& loop, const PointIndex& index, const Eigen::AlignedBox3d& boun
   loop.claspable = false;
   loop.hole_width = 0.0;
   if (pts.size() < 3 || !(loop.length > 0)) {
-    loop.verdict = "degenerate";
+    loop.verdict = LoopVerdict::kDegenerate;
     loop.reason = "degenerate loop (fewer than 3 distinct points)";
     return;
   }
@@ -352,7 +352,7 @@ void assess(Loop& loop, const PointIndex& index, const Eigen::AlignedBox3d& boun
   }
   if (samples.empty()) {
     loop.centre = c;
-    loop.verdict = "degenerate";
+    loop.verdict = LoopVerdict::kDegenerate;
     loop.reason = "degenerate loop (its plane projection has no interior)";
     return;
   }
@@ -362,7 +362,7 @@ void assess(Loop& loop, const PointIndex& index, const Eigen::AlignedBox3d& boun
   const double min_hole = hand ? options.finger_thickness + kFingerClearance : options.min_hole;
   const double needed = hand ? min_hole + kHoleWidthExcess : min_hole;
   if (loop.hole_width < needed) {
-    loop.verdict = hand ? "hand_too_large" : "too_narrow";
+    loop.verdict = hand ? LoopVerdict::kHandTooLarge : LoopVerdict::kTooNarrow;
     loop.reason = hand ? "too narrow for this hand: hole " + metres(loop.hole_width) +
                              " wide < fingers " + metres(options.finger_thickness) + " + " +
                              centimetres(kFingerClearance + kHoleWidthExcess)
@@ -382,7 +382,7 @@ void assess(Loop& loop, const PointIndex& index, const Eigen::AlignedBox3d& boun
     }
     if (free + blocked > 0 && free < blocked) {
       const int hidden = static_cast<int>(std::lround(100.0 * blocked / (free + blocked)));
-      loop.verdict = "occlusion_shadow";
+      loop.verdict = LoopVerdict::kOcclusionShadow;
       loop.reason = "occlusion shadow: " + std::to_string(hidden) +
                     "% of the hole lies on or behind measured surface in every camera (never "
                     "seen through: a gap behind a nearer part, or in sparse data)";
@@ -463,7 +463,7 @@ void assess(Loop& loop, const PointIndex& index, const Eigen::AlignedBox3d& boun
   if (sensed && ((passage && !hole_seen) || (!passage && closed_side))) {
     std::string what;
     if (passage) {
-      loop.verdict = "unseen_far_side";
+      loop.verdict = LoopVerdict::kUnseenFarSide;
       what = "never seen through: only " + std::to_string(std::lround(100.0 * hole_free)) +
              "% of the hole is known free space (a slit in a partly seen wall, or a shadow "
              "between objects)";
@@ -473,7 +473,7 @@ void assess(Loop& loop, const PointIndex& index, const Eigen::AlignedBox3d& boun
       const int share = static_cast<int>(std::lround(100.0 * (1.0 - f.share_free())));
       const std::string beyond =
           " of the space " + metres(far_length) + " beyond the hole, where fingertips come out, ";
-      loop.verdict = f.occupied > f.unknown ? "enclosed" : "unseen_far_side";
+      loop.verdict = f.occupied > f.unknown ? LoopVerdict::kEnclosed : LoopVerdict::kUnseenFarSide;
       what = f.occupied > f.unknown
                  ? "leads into enclosed space: " + std::to_string(share) + "%" + beyond +
                        "is measured surface or unseen (a container's mouth, a bowl's or pot's "
@@ -487,7 +487,7 @@ void assess(Loop& loop, const PointIndex& index, const Eigen::AlignedBox3d& boun
     return;
   }
   if (!passage) {
-    loop.verdict = "tube_wall";
+    loop.verdict = LoopVerdict::kTubeWall;
     loop.reason = surrounded_end
                       ? "loop around a tube wall: material all around the passage " +
                             metres(reach) + " from the hole (the inside of a tube, not a hole)"
@@ -497,7 +497,7 @@ void assess(Loop& loop, const PointIndex& index, const Eigen::AlignedBox3d& boun
     return;
   }
   if (!sensed && options.sensor_origin_missing) {
-    loop.verdict = "no_sensor_origin";
+    loop.verdict = LoopVerdict::kNoSensorOrigin;
     loop.reason =
         "not known to be a hole: the cloud has no sensor origin, so a hole cannot be told from an "
         "unseen gap (give the sensor's pose, or a PCD with its VIEWPOINT)";
@@ -517,7 +517,7 @@ void assess(Loop& loop, const PointIndex& index, const Eigen::AlignedBox3d& boun
     if (std::abs(descent) > 1e-9) {
       const double t_floor = height / std::abs(descent);
       if (t_floor < std::max(kMinRoom, 2.0 * options.finger_thickness)) {
-        loop.verdict = "blocked_by_support";
+        loop.verdict = LoopVerdict::kBlockedBySupport;
         loop.reason =
             "blocked by the support: the passage through the loop meets the "
             "supporting surface " +
@@ -529,7 +529,7 @@ void assess(Loop& loop, const PointIndex& index, const Eigen::AlignedBox3d& boun
       if (t_floor <= exit_distance(bounds, loop.centre, down) + 2.0 * link) {
         for (double t = std::max(best, link); t < t_floor - link; t += link) {
           if (surrounded(index, loop.centre + t * down, down, 1.5 * best, link)) {
-            loop.verdict = "cavity";
+            loop.verdict = LoopVerdict::kCavity;
             loop.reason = "opening into a cavity: walls all around the passage " + metres(t) +
                           " in, and it ends at the supporting surface " + metres(t_floor) +
                           " from the hole (a container's mouth)";
@@ -542,7 +542,7 @@ void assess(Loop& loop, const PointIndex& index, const Eigen::AlignedBox3d& boun
   // The closed hand around the bar.
   measure_bar(loop, index, views, options);
   if (options.closed_aperture > 0 && !(loop.bar_thickness <= widest_bar(options.closed_aperture))) {
-    loop.verdict = "bar_too_thick";
+    loop.verdict = LoopVerdict::kBarTooThick;
     loop.reason = "bar too thick for this hand: the thinnest material along the loop is " +
                   (std::isfinite(loop.bar_thickness) ? metres(loop.bar_thickness)
                                                      : std::string("a wall or body")) +
@@ -551,7 +551,7 @@ void assess(Loop& loop, const PointIndex& index, const Eigen::AlignedBox3d& boun
     return;
   }
   loop.claspable = true;
-  loop.verdict = "claspable";
+  loop.verdict = LoopVerdict::kClaspable;
   loop.reason = "claspable: open hole " + metres(loop.hole_width) + " wide (" +
                 (hand ? "fingers need " : "min-hole ") + metres(needed) + ")" +
                 (views.empty() ? "" : ", seen through") +
@@ -634,6 +634,40 @@ std::vector<ClaspTarget> clasp_targets(const Loop& loop, int k, double max_bar) 
     out.push_back(fine[fits[std::min(static_cast<int>(at), static_cast<int>(fits.size()) - 1)]]);
   }
   return out;
+}
+
+const char* verdict_name(LoopVerdict verdict) {
+  switch (verdict) {
+    case LoopVerdict::kUnranked:
+      return "unranked";
+    case LoopVerdict::kClaspable:
+      return "claspable";
+    case LoopVerdict::kTooNarrow:
+      return "too_narrow";
+    case LoopVerdict::kHandTooLarge:
+      return "hand_too_large";
+    case LoopVerdict::kOcclusionShadow:
+      return "occlusion_shadow";
+    case LoopVerdict::kTubeWall:
+      return "tube_wall";
+    case LoopVerdict::kEnclosed:
+      return "enclosed";
+    case LoopVerdict::kUnseenFarSide:
+      return "unseen_far_side";
+    case LoopVerdict::kNoSensorOrigin:
+      return "no_sensor_origin";
+    case LoopVerdict::kBlockedBySupport:
+      return "blocked_by_support";
+    case LoopVerdict::kCavity:
+      return "cavity";
+    case LoopVerdict::kBarTooThick:
+      return "bar_too_thick";
+    case LoopVerdict::kDegenerate:
+      return "degenerate";
+    case LoopVerdict::kNoRoom:
+      return "no_room";
+  }
+  return "unranked";
 }
 
 }  // namespace claspplan::perception

@@ -49,6 +49,27 @@
 
 namespace claspplan::perception {
 
+/// Why a loop is, or is not, claspable (Loop::verdict; verdict_name() gives the word that
+/// result files and reasons use).
+enum class LoopVerdict {
+  kUnranked,          ///< not ranked yet
+  kClaspable,         ///< a seen-through hole the hand's fingers pass, around a bar it encloses
+  kTooNarrow,         ///< the hole is narrower than min_hole
+  kHandTooLarge,      ///< the hole is narrower than this hand's fingers need
+  kOcclusionShadow,   ///< never seen through: a gap behind a nearer part, or sparse data
+  kTubeWall,          ///< material inside the loop: it runs around a tube's wall
+  kEnclosed,          ///< the hole leads into occupied space (a container's mouth or neck)
+  kUnseenFarSide,     ///< the space where the fingertips come out was never seen
+  kNoSensorOrigin,    ///< a cloud without a sensor origin: a hole cannot be told from a gap
+  kBlockedBySupport,  ///< the table fills the hole
+  kCavity,            ///< the loop bounds a cavity's rim, not a through-hole
+  kBarTooThick,       ///< the bar is thicker than the closed hand's aperture
+  kDegenerate,        ///< too few points or no extent
+  kNoRoom,            ///< the planner found no room for the closed hand at any clasp target
+};
+/// The verdict as one word: "claspable", "too_narrow", "hand_too_large", ...
+const char* verdict_name(LoopVerdict verdict);
+
 struct Loop {
   std::vector<Eigen::Vector3d> points;  ///< closed polyline; the last point joins the first
   std::vector<int> vertices;            ///< indices into the object's cloud / K_d
@@ -56,10 +77,7 @@ struct Loop {
   int rank = 0;                         ///< 1 = best
   bool claspable = false;
   std::string reason;  ///< one line: the verdict and its measure
-  /// One word for the verdict: claspable, too_narrow, hand_too_large, occlusion_shadow,
-  /// tube_wall, enclosed, unseen_far_side, no_sensor_origin, blocked_by_support, cavity,
-  /// bar_too_thick, degenerate.
-  std::string verdict;
+  LoopVerdict verdict = LoopVerdict::kUnranked;
   double hole_width = 0.0;  ///< metres (0 if not measured)
   /// Bar thickness across the loop at kBarSamples equally spaced places (arc length, from the
   /// first point): the diameter of the material's cross-section there; +inf where the material
@@ -77,7 +95,7 @@ constexpr int kBarSamples = 48;
 /// A finger passes a hole this much wider than itself (m): 5 mm on each side, for the hole's
 /// width as measured (from 2,000 points with 1 mm depth noise it moves by a few millimetres) and
 /// for the controller's aim. With 5 mm in all, hands planned at holes 6-7 mm wider than their
-/// fingers and failed (real suite, README "Real objects").
+/// fingers and failed (real suite, docs/real-objects.md).
 constexpr double kFingerClearance = 0.010;
 /// The hole width is measured in the loop's plane, where it reads wider than the passage's
 /// narrowest place: by 3-5 mm at a pitcher's, a teapot's and a mug's handle (against their

@@ -3,11 +3,13 @@
 #include <algorithm>
 #include <cstdio>
 #include <limits>
+#include <numeric>
 #include <stdexcept>
 
 #include "perception/depth_surface.hpp"
 #include "perception/input_error.hpp"
-#include "tsrrt/clasp_planning.hpp"
+#include "tsrrt/clasp_setup.hpp"
+#include "tsrrt/elapsed.hpp"
 
 namespace claspplan::tsrrt {
 
@@ -38,7 +40,8 @@ std::string no_loop_reason(const perception::ObjectModel& object) {
   std::vector<const perception::Loop*> widest;
   for (const auto& l : object.loops) widest.push_back(&l);
   std::stable_sort(widest.begin(), widest.end(), [](const auto* a, const auto* b) {
-    const bool room_a = a->verdict == "no_room", room_b = b->verdict == "no_room";
+    const bool room_a = a->verdict == perception::LoopVerdict::kNoRoom,
+               room_b = b->verdict == perception::LoopVerdict::kNoRoom;
     if (room_a != room_b) return room_a;
     return a->hole_width > b->hole_width;
   });
@@ -91,6 +94,129 @@ void object_collision_mesh(const perception::ObjectModel& object, const percepti
                      "and no K_d triangles: raise perception.d or the point count)");
   }
   loop_tube(loop.points, kLoopTubeRadius, vertices, triangles);
+}
+
+void loop_tube(const servo::Points& loop, double radius, std::vector<Eigen::Vector3d>& vertices,
+               std::vector<Eigen::Vector3i>& triangles) {
+  constexpr int kSides = 6;
+  const int n = static_cast<int>(loop.size());
+  const int first = static_cast<int>(vertices.size());
+  // Rings of vertices around each loop point, in the plane normal to the mean of its two
+  // segments; the ring's frame is carried along the loop (parallel transport), so neighbouring
+  // rings line up and the band between them does not twist.
+  Eigen::Vector3d u = Eigen::Vector3d::Zero();
+  for (int i = 0; i < n; ++i) {
+    const Eigen::Vector3d tangent = (loop[(i + 1) % n] - loop[(i + n - 1) % n]).normalized();
+    u = (i == 0) ? tangent.unitOrthogonal() : (u - tangent * tangent.dot(u));
+    if (u.norm() < 1e-9) u = tangent.unitOrthogonal();  // a hairpin turn
+    u.normalize();
+    const Eigen::Vector3d v = tangent.cross(u);
+    for (int k = 0; k < kSides; ++k) {
+      const double a = 2.0 * 3.14159265358979323846 * k / kSides;
+      vertices.push_back(loop[i] + radius * (std::cos(a) * u + std::sin(a) * v));
+    }
+  }
+  for (int i = 0; i < n; ++i) {
+    const int a = first + i * kSides, b = first + ((i + 1) % n) * kSides;
+    for (int k = 0; k < kSides; ++k) {
+      const int k1 = (k + 1) % kSides;
+      triangles.emplace_back(a + k, a + k1, b + k1);
+      triangles.emplace_back(a + k, b + k1, b + k);
+    }
+  }
+}
+
+std::string insecure_reason(const SecureClaspReport& check) {
+  if (check.timed_out) return "the time limit ended the check";
+  if (check.start_in_collision) return "the closed hand touches the object";
+  if (check.escape_stage.empty() || check.escape_stage == "random_motions")
+    return "the object got free in " + std::to_string(check.escaped_sequences) + " of " +
+           std::to_string(check.sequences) + " sequences of random motions";
+  if (check.escape_stage == "escape_search")
+    return "the escape search found a way out for the object (random motions held it)";
+  return "the object got free under the " + check.escape_stage +
+         " pull without rising against it (random motions held it)";
+}
+
+double closable_tolerance(const ClaspPlanningOptions& planning, double goal_linking) {
+  return planning.closable_linking > 0 ? std::min(planning.closable_linking, goal_linking)
+                                       : goal_linking;
+}
+
+bool closed_hand_links(const std::vector<double>& finger_linking, double threshold) {
+  const std::size_t n = finger_linking.size();
+  if (n == 0) return false;
+  // Summed in curve order, as eq. 4's task feature does: the same mean to the last bit.
+  const double sum = std::accumulate(finger_linking.begin(), finger_linking.end(), 0.0);
+  if (sum / static_cast<double>(n) >= threshold) return true;
+  const double lowest = *std::min_element(finger_linking.begin(), finger_linking.end());
+  return n >= 3 && (sum - lowest) / static_cast<double>(n - 1) >= threshold;
+}
+
+namespace {
+
+// close_and_check at one open pose.
+ClaspCandidate close_and_check_at(const ClaspScene& scene, const Eigen::VectorXd& q_open,
+                                  ClaspTimings& timings, bool refuse_unlinked) {
+  ClaspCandidate c;
+  auto t = Clock::now();
+  c.q_closed = close_fingers(scene.robot, scene.world, q_open, scene.planning.closing);
+  timings.closing += since(t);
+  // A closed hand that falls below the goal region the tree stopped in is no clasp: refused at
+  // once.
+  const servo::TaskState closed = scene.controller.project(c.q_closed);
+  c.closed_linking = closed.linking;
+  c.refused =
+      refuse_unlinked && !closed_hand_links(closed.finger_linking,
+                                            closable_tolerance(scene.planning, scene.goal_linking));
+  if (c.refused) return c;
+  t = Clock::now();
+  c.check = scene.checker.check(c.q_closed, scene.loop.points, &c.screened_out);
+  timings.verification += since(t);
+  return c;
+}
+
+}  // namespace
+
+std::vector<Eigen::VectorXd> deepen_to_linking_goal(const ClaspScene& scene, Eigen::VectorXd q) {
+  constexpr int kSteps = 30;
+  std::vector<Eigen::VectorXd> path;
+  servo::ClaspController& controller = scene.controller;
+  controller.forget_direction();
+  servo::TaskState x = controller.project(q);
+  if (x.nearest_target < 0 || x.linking >= scene.goal_linking) return path;
+  const Eigen::Vector3d target = controller.targets()[x.nearest_target].point;
+  for (int s = 0; s < kSteps && x.linking < scene.goal_linking; ++s) {
+    Eigen::VectorXd next = controller.step(q, target, 1.0);
+    if (!scene.world.motion_free(q, next, scene.planning.collision_resolution)) break;
+    q = std::move(next);
+    path.push_back(q);
+    x = controller.project(q);
+  }
+  controller.forget_direction();  // the search's next step starts elsewhere
+  return path;
+}
+
+ClaspCandidate close_and_check(const ClaspScene& scene, const Eigen::VectorXd& q_open,
+                               ClaspTimings& timings, bool refuse_unlinked) {
+  ClaspCandidate first = close_and_check_at(scene, q_open, timings, refuse_unlinked);
+  if (first.check.secure || first.check.timed_out) return first;
+  // Deeper before closing again: straight along the approach to contact, else the controller on
+  // to the hand's linking goal.
+  for (int way = 0; way < 2; ++way) {
+    const auto t = Clock::now();
+    std::vector<Eigen::VectorXd> approach =
+        way == 0 ? approach_until_contact(scene.robot, scene.world, q_open, scene.planning.approach)
+                 : deepen_to_linking_goal(scene, q_open);
+    timings.closing += since(t);
+    if (approach.empty()) continue;
+    ClaspCandidate deeper = close_and_check_at(scene, approach.back(), timings, refuse_unlinked);
+    if (!deeper.check.secure) continue;
+    deeper.approach = std::move(approach);
+    deeper.deepened = way == 1;
+    return deeper;
+  }
+  return first;
 }
 
 }  // namespace claspplan::tsrrt

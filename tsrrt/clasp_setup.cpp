@@ -4,13 +4,13 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
-#include <numeric>
 #include <stdexcept>
 #include <utility>
 
 #include "perception/input_error.hpp"
 #include "perception/mesh.hpp"
 #include "robots/kinematics.hpp"
+#include "tsrrt/clasp_problem.hpp"
 #include "tsrrt/clasp_scene.hpp"
 #include "tsrrt/elapsed.hpp"
 #include "tsrrt/hand_room.hpp"
@@ -199,7 +199,7 @@ int choose_loop_with_room(const robots::RobotModel& model, const ClaspRequest& r
         ": no room for the hand (the closed hand reaches into the environment at every clasp "
         "target)");
     loop.claspable = false;
-    loop.verdict = "no_room";
+    loop.verdict = perception::LoopVerdict::kNoRoom;
     loop.reason =
         "no room for this hand: the hand closed around the bar reaches into the "
         "environment at each of the loop's " +
@@ -328,99 +328,6 @@ ClaspResult plan_clasp(const ClaspRequest& request) {
   r.final_state.finger_virtual_linking = final_state.finger_linking;
   r.final_state.finger_open_linking = open_finger_linking(model, r.motion.final_q, loop.points);
   return r;
-}
-
-std::string insecure_reason(const SecureClaspReport& check) {
-  if (check.timed_out) return "the time limit ended the check";
-  if (check.start_in_collision) return "the closed hand touches the object";
-  if (check.escape_stage.empty() || check.escape_stage == "random_motions")
-    return "the object got free in " + std::to_string(check.escaped_sequences) + " of " +
-           std::to_string(check.sequences) + " sequences of random motions";
-  if (check.escape_stage == "escape_search")
-    return "the escape search found a way out for the object (random motions held it)";
-  return "the object got free under the " + check.escape_stage +
-         " pull without rising against it (random motions held it)";
-}
-
-double closable_tolerance(const ClaspPlanningOptions& planning, double goal_linking) {
-  return planning.closable_linking > 0 ? std::min(planning.closable_linking, goal_linking)
-                                       : goal_linking;
-}
-
-bool closed_hand_links(const std::vector<double>& finger_linking, double threshold) {
-  const std::size_t n = finger_linking.size();
-  if (n == 0) return false;
-  // Summed in curve order, as eq. 4's task feature does: the same mean to the last bit.
-  const double sum = std::accumulate(finger_linking.begin(), finger_linking.end(), 0.0);
-  if (sum / static_cast<double>(n) >= threshold) return true;
-  const double lowest = *std::min_element(finger_linking.begin(), finger_linking.end());
-  return n >= 3 && (sum - lowest) / static_cast<double>(n - 1) >= threshold;
-}
-
-namespace {
-
-// close_and_check at one open pose.
-ClaspCandidate close_and_check_at(const ClaspScene& scene, const Eigen::VectorXd& q_open,
-                                  ClaspTimings& timings, bool refuse_unlinked) {
-  ClaspCandidate c;
-  auto t = Clock::now();
-  c.q_closed = close_fingers(scene.robot, scene.world, q_open, scene.planning.closing);
-  timings.closing += since(t);
-  // A closed hand that falls below the goal region the tree stopped in is no clasp: refused at
-  // once.
-  const servo::TaskState closed = scene.controller.project(c.q_closed);
-  c.closed_linking = closed.linking;
-  c.refused =
-      refuse_unlinked && !closed_hand_links(closed.finger_linking,
-                                            closable_tolerance(scene.planning, scene.goal_linking));
-  if (c.refused) return c;
-  t = Clock::now();
-  c.check = scene.checker.check(c.q_closed, scene.loop.points, &c.screened_out);
-  timings.verification += since(t);
-  return c;
-}
-
-}  // namespace
-
-std::vector<Eigen::VectorXd> deepen_to_linking_goal(const ClaspScene& scene, Eigen::VectorXd q) {
-  constexpr int kSteps = 30;
-  std::vector<Eigen::VectorXd> path;
-  servo::ClaspController& controller = scene.controller;
-  controller.forget_direction();
-  servo::TaskState x = controller.project(q);
-  if (x.nearest_target < 0 || x.linking >= scene.goal_linking) return path;
-  const Eigen::Vector3d target = controller.targets()[x.nearest_target].point;
-  for (int s = 0; s < kSteps && x.linking < scene.goal_linking; ++s) {
-    Eigen::VectorXd next = controller.step(q, target, 1.0);
-    if (!scene.world.motion_free(q, next, scene.planning.collision_resolution)) break;
-    q = std::move(next);
-    path.push_back(q);
-    x = controller.project(q);
-  }
-  controller.forget_direction();  // the search's next step starts elsewhere
-  return path;
-}
-
-ClaspCandidate close_and_check(const ClaspScene& scene, const Eigen::VectorXd& q_open,
-                               ClaspTimings& timings, bool refuse_unlinked) {
-  ClaspCandidate first = close_and_check_at(scene, q_open, timings, refuse_unlinked);
-  if (first.check.secure || first.check.timed_out) return first;
-  // Deeper before closing again: straight along the approach to contact, else the controller on
-  // to the hand's linking goal.
-  for (int way = 0; way < 2; ++way) {
-    const auto t = Clock::now();
-    std::vector<Eigen::VectorXd> approach =
-        way == 0 ? approach_until_contact(scene.robot, scene.world, q_open, scene.planning.approach)
-                 : deepen_to_linking_goal(scene, q_open);
-    timings.closing += since(t);
-    if (approach.empty()) continue;
-    ClaspCandidate deeper = close_and_check_at(scene, approach.back(), timings, refuse_unlinked);
-    if (!deeper.check.secure) continue;
-    deeper.approach = std::move(approach);
-    deeper.deepened = way == 1;
-    return deeper;
-  }
-  return first;
 }
 
 robots::CollisionWorld make_collision_world(const robots::RobotModel& robot,

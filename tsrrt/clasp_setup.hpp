@@ -31,7 +31,7 @@
 #include "robots/robot_model.hpp"
 #include "servo/clasp_controller.hpp"
 #include "servo/controller_run.hpp"
-#include "tsrrt/clasp_planning.hpp"
+#include "tsrrt/clasp_scene.hpp"
 #include "tsrrt/planner.hpp"
 
 namespace claspplan::tsrrt {
@@ -48,66 +48,6 @@ enum class ClaspMode {
 };
 
 struct ClaspResult;
-struct ClaspTimings;
-
-/// The scene plan_clasp() builds around the chosen loop, handed to a search that replaces
-/// TS-RRT (ClaspRequest::search: the benchmark's baselines run in the same pipeline, with the
-/// same perception, collision model, finger closing and secure-clasp check).
-struct ClaspScene {
-  const robots::RobotModel& robot;
-  robots::CollisionWorld& world;       ///< robot, object and environment
-  servo::ClaspController& controller;  ///< bound to the loop and its clasp targets
-  SecureClaspChecker& checker;         ///< the secure-clasp check of this object
-  const perception::Loop& loop;
-  double goal_linking;                   ///< the hand's virtual-linking goal (mean |VLk|)
-  const ClaspPlanningOptions& planning;  ///< closing, check, seed and limits
-};
-
-/// Why a clasp check did not pass, in one line: the stage that freed the object (random motions,
-/// escape search, a pull), the time limit, or a hand that already touches the object.
-std::string insecure_reason(const SecureClaspReport& check);
-
-/// The tree's goal tolerance (mean |VLk|): closable_linking, at most the goal; the goal itself
-/// when closable_linking is 0.
-double closable_tolerance(const ClaspPlanningOptions& planning, double goal_linking);
-
-/// Does a closed hand still link the loop, by its finger curves' |VLk|? When their mean (eq. 4)
-/// reaches `threshold`, or, with three curves or more, when the mean of all but the lowest does:
-/// one finger may miss a hole narrower than the hand, and the secure-clasp check decides (the
-/// paper's goal tolerance ranges from a hand's goal down to 0.65 with the object's shape, Sec. V).
-bool closed_hand_links(const std::vector<double>& finger_linking, double threshold);
-
-/// The controller continued from q toward its nearest clasp target at full linking, each step
-/// collision-free, until the hand's linking goal (scene.goal_linking) or 30 steps: the tree stops
-/// at the lower closable tolerance, where the fingertips have often just crossed the bar. Returns
-/// the poses after q (empty: already at the goal, or the first step was blocked).
-std::vector<Eigen::VectorXd> deepen_to_linking_goal(const ClaspScene& scene, Eigen::VectorXd q);
-
-/// A clasp candidate: the fingers closed at an open pose, and the secure-clasp check of the
-/// closed hand unless it was refused before (closed_hand_links() false at the tree's tolerance).
-struct ClaspCandidate {
-  /// The motion on from the open pose when the fingers closed at its end (empty: closed where the
-  /// tree stopped): the open hand's straight approach to contact, or the controller's steps on to
-  /// the hand's linking goal (`deepened`). The motion is approach, then q_closed.
-  std::vector<Eigen::VectorXd> approach;
-  bool deepened = false;
-  Eigen::VectorXd q_closed;
-  double closed_linking = 0.0;  ///< mean |VLk| of the closed hand (eq. 4)
-  bool refused = false;         ///< below the tree's tolerance: no check ran
-  bool screened_out = false;    ///< the check's screening (its first motions) found an escape
-  SecureClaspReport check;
-};
-
-/// Closes the fingers at q_open (close_fingers with the scene's options); with `refuse_unlinked`,
-/// refuses a closed hand that no longer links at the tree's tolerance (closed_hand_links,
-/// closable_tolerance), else runs scene.checker. When that gives no secure clasp, the open hand
-/// approaches to contact (approach_until_contact) and the same follows there, and failing that,
-/// the controller goes on from the open pose to the hand's linking goal (up to 30 collision-free
-/// steps: the tree stops at the lower closable tolerance) and the same follows there; the first
-/// secure clasp is returned, else the first attempt. Adds the seconds to timings.closing and
-/// timings.verification.
-ClaspCandidate close_and_check(const ClaspScene& scene, const Eigen::VectorXd& q_open,
-                               ClaspTimings& timings, bool refuse_unlinked = true);
 
 /// A search in place of TS-RRT: from result.start, fills result.motion.waypoints (start to the
 /// closed hand), success, verified, reason, verification, statistics, and timings.closing and

@@ -11,7 +11,7 @@
 
 #include "perception/random_draws.hpp"
 #include "robots/kinematics.hpp"
-#include "tsrrt/clasp_planning.hpp"
+#include "tsrrt/secure_clasp.hpp"
 #include "tsrrt/secure_clasp_detail.hpp"
 
 namespace claspplan::tsrrt {

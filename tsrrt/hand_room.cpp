@@ -5,7 +5,7 @@
 #include <string>
 
 #include "robots/kinematics.hpp"
-#include "tsrrt/clasp_planning.hpp"
+#include "tsrrt/approach.hpp"
 
 namespace claspplan::tsrrt {
 

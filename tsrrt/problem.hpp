@@ -1,6 +1,6 @@
 // What the Task-Space RRT needs of a clasp problem: the task-space projection, the local
 // controller, collision checking of motions and the goal test (paper Sec. IV-D). The planner
-// (tsrrt/planner.hpp) is written against this interface only; tsrrt/clasp_planning.hpp binds it to
+// (tsrrt/planner.hpp) is written against this interface only; tsrrt/clasp_problem.hpp binds it to
 // a robot, an object loop and the servo controller.
 #pragma once
 

@@ -6,6 +6,8 @@
 //   one escapes (an insecure clasp is shown by its first escape);
 // - all cores by default; each sequence has its own random stream and rounds end together, so the
 //   report does not depend on the number of threads.
+#include "tsrrt/secure_clasp.hpp"
+
 #include <algorithm>
 #include <atomic>
 #include <chrono>
@@ -16,7 +18,7 @@
 #include <unordered_map>
 
 #include "robots/kinematics.hpp"
-#include "tsrrt/clasp_planning.hpp"
+#include "servo/linking.hpp"
 #include "tsrrt/clasp_scene.hpp"
 #include "tsrrt/secure_clasp_detail.hpp"
 
@@ -413,6 +415,18 @@ SecureClaspReport SecureClaspChecker::check(const Eigen::VectorXd& q, const serv
   if (screened_out)
     *screened_out = (report.stages.empty() || !report.stages.front().passed) && rounds <= 2;
   return report;
+}
+
+std::vector<double> open_finger_linking(const robots::RobotModel& model, const Eigen::VectorXd& q,
+                                        const servo::Points& loop) {
+  robots::RobotData data(model);
+  robots::FingerCurvesData curves;
+  robots::finger_curves(model, q, data, curves, false);
+  std::vector<double> values;
+  for (const auto& curve : curves.points) {
+    values.push_back(std::abs(servo::gauss_linking(loop, true, curve, false)));
+  }
+  return values;
 }
 
 }  // namespace claspplan::tsrrt

@@ -12,7 +12,7 @@
 
 #include "robots/robot_model.hpp"
 #include "servo/linking.hpp"
-#include "tsrrt/clasp_planning.hpp"
+#include "tsrrt/secure_clasp.hpp"
 
 namespace claspplan::tsrrt::detail {
 

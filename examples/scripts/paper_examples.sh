@@ -1,7 +1,7 @@
 #!/bin/sh
 # Regenerates the paper's example depth files (examples/depth/<scene>/) with the synthetic depth
 # sensor and the scenarios that read them (examples/scenarios/<object>_<pose>_<hand>.yaml,
-# chair_obstructed_<hand>.yaml), then the README's pictures of the objects (paper_pictures.sh).
+# chair_obstructed_<hand>.yaml), then the pictures of the objects in docs/results.md (paper_pictures.sh).
 # Usage: examples/scripts/paper_examples.sh [path/to/claspplan]
 set -e
 here=$(cd "$(dirname "$0")/.." && pwd)

@@ -1,7 +1,7 @@
 #!/bin/sh
-# Draws the README's pictures of the paper's objects: `claspplan loops --png` of each object's
+# Draws docs/results.md's pictures of the paper's objects: `claspplan loops --png` of each object's
 # pose 1 from its committed depth files (K_d, the best-ranked loop in red, the other stable loops
-# in blue), written to examples/pictures/paper/<object>.png (the README shows them 300 pixels wide).
+# in blue), written to examples/pictures/paper/<object>.png (docs/results.md shows them 300 pixels wide).
 # Usage: examples/scripts/paper_pictures.sh [path/to/claspplan]
 set -e
 here=$(cd "$(dirname "$0")/.." && pwd)

@@ -3,7 +3,7 @@
 # and the longest planning time and the median cycles of the verified runs, and the most common
 # reason of the others (with --controller-only: the controller reaching the goal, and the median
 # steps).
-# The README's result tables come from this script.
+# The result tables of docs/results.md, docs/real-objects.md and docs/speed.md come from this script.
 #
 #   examples/scripts/sweep.sh [--seeds "1 2 3 4"] [--bin build/claspplan] [--jobs 2]
 #                             [--controller-only] SCENARIO.yaml...

@@ -66,7 +66,8 @@ TEST(LoopChoice, JugHandleIsChosenAndItsMouthRejectedForEveryHand) {
     for (const auto& l : m.loops) mouth |= !l.claspable && l.centre.z() > 0.18;
     std::string verdicts;
     for (const auto& l : m.loops)
-      verdicts += " [" + l.verdict + " z " + std::to_string(l.centre.z()) + "]";
+      verdicts += " [" + std::string(perception::verdict_name(l.verdict)) + " z " +
+                  std::to_string(l.centre.z()) + "]";
     EXPECT_TRUE(mouth) << hand << verdicts;
     // Targets lie on the handle, where the closed hand fits around it.
     ASSERT_FALSE(m.targets.empty());

@@ -76,11 +76,11 @@ TEST(RealClouds, StereoMugRimNeverAndHandleOnlyForTheICub) {
     for (const auto& l : m.loops) {
       if (l.centre.z() > 0.08) {  // the rim, around the mouth at the mug's top
         mouth = true;
-        EXPECT_EQ(l.verdict, "unseen_far_side") << hand << ": " << l.reason;
+        EXPECT_EQ(l.verdict, perception::LoopVerdict::kUnseenFarSide) << hand << ": " << l.reason;
       }
       if (is_mug_handle(l) && l.claspable) handle = true;
       if (is_mug_handle(l) && std::string(hand) == "sdh") {
-        EXPECT_EQ(l.verdict, "hand_too_large") << l.reason;
+        EXPECT_EQ(l.verdict, perception::LoopVerdict::kHandTooLarge) << l.reason;
       }
     }
     EXPECT_TRUE(mouth) << hand;

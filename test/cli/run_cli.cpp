@@ -220,7 +220,7 @@ TEST_P(PlannedClasp, IsVerifiedAndCollisionFree) {
   expect_collision_free_path(dir.file("out/result.json"));
 }
 
-// Fixed seeds; measured success rates over more seeds are in the issue notes and the README.
+// Fixed seeds; measured success rates over more seeds are in docs/results.md.
 INSTANTIATE_TEST_SUITE_P(
     BoxWithRingHandle, PlannedClasp,
     ::testing::Values(PlannedCase{"purse_1_sdh", 1}, PlannedCase{"purse_1_sdh", 2},

@@ -50,13 +50,13 @@ DepthView camera_above(const Eigen::Vector3d& centre, bool hidden_annulus) {
 TEST(LoopProbe, WithoutCamerasOnlyTheStraightLineCounts) {
   RingBesideMaterial s;
   assess_loop(s.loop, s.cloud, {}, RankingOptions{});
-  EXPECT_EQ(s.loop.verdict, "tube_wall") << s.loop.reason;
+  EXPECT_EQ(s.loop.verdict, perception::LoopVerdict::kTubeWall) << s.loop.reason;
 }
 
 TEST(LoopProbe, ALineTiltedAwayFromMaterialPassesThroughSeenSpace) {
   RingBesideMaterial s;
   assess_loop(s.loop, s.cloud, {camera_above(s.centre, false)}, RankingOptions{});
-  EXPECT_EQ(s.loop.verdict, "claspable") << s.loop.reason;
+  EXPECT_EQ(s.loop.verdict, perception::LoopVerdict::kClaspable) << s.loop.reason;
   EXPECT_NE(s.loop.reason.find("degrees from its axis"), std::string::npos) << s.loop.reason;
   EXPECT_NEAR(s.loop.hole_width, 0.05, 0.002);
 }
@@ -64,7 +64,7 @@ TEST(LoopProbe, ALineTiltedAwayFromMaterialPassesThroughSeenSpace) {
 TEST(LoopProbe, TiltedLinesThroughUnseenSpaceDoNotCount) {
   RingBesideMaterial s;
   assess_loop(s.loop, s.cloud, {camera_above(s.centre, true)}, RankingOptions{});
-  EXPECT_EQ(s.loop.verdict, "tube_wall") << s.loop.reason;
+  EXPECT_EQ(s.loop.verdict, perception::LoopVerdict::kTubeWall) << s.loop.reason;
 }
 
 }  // namespace

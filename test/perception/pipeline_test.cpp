@@ -180,7 +180,7 @@ TEST(Depth, HandleFoundAndRankedFirstFromOneCamera) {
   const Loop& handle = m.loops[0];
   EXPECT_LT((handle.centre - objects::purse_handle_centre()).norm(), 0.04);
   if (!handle.claspable) {
-    EXPECT_EQ(handle.verdict, "unseen_far_side") << handle.reason;
+    EXPECT_EQ(handle.verdict, perception::LoopVerdict::kUnseenFarSide) << handle.reason;
     EXPECT_NE(handle.reason.find("a camera at ("), std::string::npos) << handle.reason;
   }
 }
@@ -217,7 +217,8 @@ TEST(Depth, OcclusionShadowIsNotClaspable) {
   for (const Loop& l : m.loops) {
     EXPECT_FALSE(l.claspable) << l.reason;
     shadows += l.reason.find("occlusion shadow") != std::string::npos;
-    if (l.verdict == "unseen_far_side" && (l.centre - Eigen::Vector3d(0, 0, 0.06)).norm() < 0.05) {
+    if (l.verdict == perception::LoopVerdict::kUnseenFarSide &&
+        (l.centre - Eigen::Vector3d(0, 0, 0.06)).norm() < 0.05) {
       ++unseen;
       EXPECT_NE(l.reason.find("a camera at ("), std::string::npos) << l.reason;
     }

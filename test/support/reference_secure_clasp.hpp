@@ -9,7 +9,7 @@
 
 #include "robots/collision_world.hpp"
 #include "robots/kinematics.hpp"
-#include "tsrrt/clasp_planning.hpp"
+#include "tsrrt/secure_clasp.hpp"
 #include "tsrrt/secure_clasp_detail.hpp"
 
 namespace claspplan::test {

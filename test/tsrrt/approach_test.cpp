@@ -1,12 +1,16 @@
-// The open hand's approach to contact: straight along its approach direction, the tool's
+// Where the hand approaches a clasp target from (outside the hole, both sides of the loop), and
+// the open hand's approach to contact: straight along its approach direction, the tool's
 // orientation kept, ending within one step of the first contact.
+#include "tsrrt/approach.hpp"
+
+#include <cmath>
+
 #include <Eigen/Geometry>
 #include <gtest/gtest.h>
 
 #include "robots/collision_world.hpp"
 #include "robots/kinematics.hpp"
 #include "robots/robot_model.hpp"
-#include "tsrrt/clasp_planning.hpp"
 
 namespace claspplan::test {
 namespace {
@@ -72,6 +76,31 @@ TEST(ApproachToContact, GoesStraightAlongTheApproachAndStopsWithinAStepOfContact
   robots::CollisionWorld nearer(m);
   nearer.add_box(plate_pose(near - o.step * direction, direction), size);
   EXPECT_TRUE(nearer.in_collision(poses.back()));
+}
+
+TEST(ClaspApproaches, ComeFromOutsideTheHoleAndBothSidesOfTheLoop) {
+  // A circle of radius 0.1 in a tilted plane, unevenly sampled (denser on one half).
+  const Eigen::Vector3d centre(0.5, -0.1, 0.3);
+  const Eigen::Vector3d u = Eigen::Vector3d(1, 0, 1).normalized(), v = Eigen::Vector3d::UnitY();
+  servo::Points loop;
+  for (int i = 0; i < 60; ++i) {
+    const double a = i < 40 ? i * 3.14159265358979 / 40 : 3.14159265358979 * (1 + (i - 40) / 20.0);
+    loop.push_back(centre + 0.1 * (std::cos(a) * u + std::sin(a) * v));
+  }
+  const double a = 0.7;
+  const Eigen::Vector3d p = centre + 0.1 * (std::cos(a) * u + std::sin(a) * v);
+  const Eigen::Vector3d t = -std::sin(a) * u + std::cos(a) * v;
+  const Eigen::Vector3d out = (p - centre).normalized(), normal = t.cross(out);
+  const auto points = tsrrt::clasp_approaches(loop, {p, 2.0 * t}, 0.1);
+  ASSERT_EQ(points.size(), 5u);
+  for (const auto& x : points) {
+    EXPECT_NEAR((x - p).norm(), 0.1, 1e-9);
+    EXPECT_NEAR((x - p).dot(t), 0.0, 1e-9);  // across the tangent: the hand's roll changes
+    EXPECT_GE((x - p).dot(out), -1e-9);      // never from inside the hole
+  }
+  EXPECT_LT((points[0] - (p + 0.1 * out)).norm(), 1e-3);     // straight from outside
+  EXPECT_LT((points[1] - (p + 0.1 * normal)).norm(), 1e-3);  // from both sides of the plane
+  EXPECT_LT((points[2] - (p - 0.1 * normal)).norm(), 1e-3);
 }
 
 }  // namespace

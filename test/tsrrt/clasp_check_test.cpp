@@ -7,7 +7,8 @@
 #include "robots/robot_model.hpp"
 #include "test/robots/test_meshes.hpp"
 #include "test/support/capsule_hand.hpp"
-#include "tsrrt/clasp_planning.hpp"
+#include "tsrrt/finger_closing.hpp"
+#include "tsrrt/secure_clasp.hpp"
 
 namespace claspplan::tsrrt {
 namespace {

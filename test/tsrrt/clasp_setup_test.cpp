@@ -147,7 +147,7 @@ TEST(ClaspSetup, CupWithoutHandleIsNoAnswerWithAReason) {
 TEST(ClaspSetup, NoLoopReasonCountsTheLoopsThatFilledIn) {
   perception::ObjectModel m;
   perception::Loop mouth;
-  mouth.verdict = "cavity";
+  mouth.verdict = perception::LoopVerdict::kCavity;
   mouth.reason = "opening into a cavity: walls all around the passage";
   m.loops.push_back(mouth);
   m.unstable_loops = 2;
@@ -199,10 +199,10 @@ TEST(ClaspSetup, DeepeningGoesOnToTheLinkingGoal) {
 TEST(ClaspSetup, NoLoopReasonPutsTheHandsRoomFirstAndCountsRepeats) {
   perception::ObjectModel m;
   perception::Loop wide, room;
-  wide.verdict = "too_narrow";
+  wide.verdict = perception::LoopVerdict::kTooNarrow;
   wide.reason = "too narrow for this hand";
   wide.hole_width = 0.08;
-  room.verdict = "no_room";
+  room.verdict = perception::LoopVerdict::kNoRoom;
   room.reason = "no room for this hand";
   room.hole_width = 0.05;
   m.loops = {wide, room, room};

@@ -5,7 +5,7 @@
 #include "robots/kinematics.hpp"
 #include "robots/robot_model.hpp"
 #include "test/robots/test_meshes.hpp"
-#include "tsrrt/clasp_planning.hpp"
+#include "tsrrt/finger_closing.hpp"
 
 namespace claspplan::test {
 namespace {

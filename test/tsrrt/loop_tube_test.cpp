@@ -1,11 +1,10 @@
-// Pieces of clasp planning that need no robot: the loop's collision tube and the detour points.
-#include "tsrrt/clasp_planning.hpp"
-
+// The clasped loop's tube in the object's collision model (tsrrt/clasp_scene.hpp).
 #include <cmath>
 
 #include <gtest/gtest.h>
 
 #include "test/support/curves.hpp"
+#include "tsrrt/clasp_scene.hpp"
 
 namespace claspplan::test {
 namespace {
@@ -37,31 +36,6 @@ TEST(LoopTube, FollowsTheLoopWithoutTwisting) {
     }
   }
   for (const auto& t : triangles) EXPECT_GE(t.minCoeff(), 1);  // only the new vertices
-}
-
-TEST(ClaspApproaches, ComeFromOutsideTheHoleAndBothSidesOfTheLoop) {
-  // A circle of radius 0.1 in a tilted plane, unevenly sampled (denser on one half).
-  const Eigen::Vector3d centre(0.5, -0.1, 0.3);
-  const Eigen::Vector3d u = Eigen::Vector3d(1, 0, 1).normalized(), v = Eigen::Vector3d::UnitY();
-  servo::Points loop;
-  for (int i = 0; i < 60; ++i) {
-    const double a = i < 40 ? i * 3.14159265358979 / 40 : 3.14159265358979 * (1 + (i - 40) / 20.0);
-    loop.push_back(centre + 0.1 * (std::cos(a) * u + std::sin(a) * v));
-  }
-  const double a = 0.7;
-  const Eigen::Vector3d p = centre + 0.1 * (std::cos(a) * u + std::sin(a) * v);
-  const Eigen::Vector3d t = -std::sin(a) * u + std::cos(a) * v;
-  const Eigen::Vector3d out = (p - centre).normalized(), normal = t.cross(out);
-  const auto points = tsrrt::clasp_approaches(loop, {p, 2.0 * t}, 0.1);
-  ASSERT_EQ(points.size(), 5u);
-  for (const auto& x : points) {
-    EXPECT_NEAR((x - p).norm(), 0.1, 1e-9);
-    EXPECT_NEAR((x - p).dot(t), 0.0, 1e-9);  // across the tangent: the hand's roll changes
-    EXPECT_GE((x - p).dot(out), -1e-9);      // never from inside the hole
-  }
-  EXPECT_LT((points[0] - (p + 0.1 * out)).norm(), 1e-3);     // straight from outside
-  EXPECT_LT((points[1] - (p + 0.1 * normal)).norm(), 1e-3);  // from both sides of the plane
-  EXPECT_LT((points[2] - (p - 0.1 * normal)).norm(), 1e-3);
 }
 
 }  // namespace
