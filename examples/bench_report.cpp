@@ -11,11 +11,11 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "core/input_error.hpp"
+#include "core/png_files.hpp"
 #include <opencv2/imgproc.hpp>
 
 #include "examples/bench_suite.hpp"
-#include "perception/input_error.hpp"
-#include "perception/png_files.hpp"
 
 namespace claspplan::cli {
 namespace {
@@ -58,7 +58,7 @@ void write_text(const std::filesystem::path& path, const std::string& text) {
 }
 
 void write_png(const std::filesystem::path& path, const cv::Mat& image) {
-  perception::write_png(path.string(), image);
+  claspplan::write_png(path.string(), image);
 }
 
 const cv::Scalar kGreen(60, 160, 60), kRed(60, 60, 200), kGrey(120, 120, 120), kBlack(0, 0, 0);

@@ -5,7 +5,7 @@
 #include <regex>
 #include <stdexcept>
 
-#include "perception/input_error.hpp"
+#include "core/input_error.hpp"
 
 namespace claspplan::cli {
 namespace {

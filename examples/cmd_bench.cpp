@@ -10,6 +10,7 @@
 #include <thread>
 #include <tuple>
 
+#include "core/input_error.hpp"
 #include <unistd.h>
 
 #include "examples/bench_report.hpp"
@@ -18,7 +19,6 @@
 #include "examples/grasp_rrt.hpp"
 #include "examples/ompl_two_phase.hpp"
 #include "examples/run_scenario.hpp"
-#include "perception/input_error.hpp"
 #include "tsrrt/elapsed.hpp"
 
 namespace claspplan::cli {

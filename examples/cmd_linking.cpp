@@ -4,9 +4,10 @@
 #include <cstdio>
 #include <iostream>
 
+#include "core/input_error.hpp"
+
 #include "examples/command.hpp"
 #include "examples/curve_file.hpp"
-#include "perception/input_error.hpp"
 #include "servo/linking.hpp"
 
 namespace claspplan::cli {

@@ -8,10 +8,11 @@
 #include <optional>
 #include <sstream>
 
+#include "core/input_error.hpp"
+
 #include "examples/command.hpp"
 #include "examples/objects.hpp"
 #include "perception/drawing.hpp"
-#include "perception/input_error.hpp"
 #include "perception/pipeline.hpp"
 #include "robots/hand_size.hpp"
 

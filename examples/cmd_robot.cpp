@@ -6,8 +6,9 @@
 #include <cstdlib>
 #include <sstream>
 
+#include "core/input_error.hpp"
+
 #include "examples/command.hpp"
-#include "perception/input_error.hpp"
 #include "robots/collision_world.hpp"
 #include "robots/kinematics.hpp"
 #include "robots/robot_model.hpp"

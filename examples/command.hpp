@@ -2,7 +2,7 @@
 //
 // Exit codes: 0 success, 1 a valid problem without an answer (no claspable loop, no clasp found,
 // not secure), 2 malformed input or usage (a one-line reason on stderr), 3 internal error.
-// Malformed input is signalled by throwing claspplan::InputError (perception/input_error.hpp)
+// Malformed input is signalled by throwing claspplan::InputError (core/input_error.hpp)
 // anywhere below a command; any other exception, std::invalid_argument included, is an internal
 // error. With --json a command prints exactly one JSON object on stdout.
 #pragma once

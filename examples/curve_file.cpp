@@ -1,7 +1,7 @@
 #include "examples/curve_file.hpp"
 
-#include "perception/file_io.hpp"
-#include "perception/input_error.hpp"
+#include "core/file_io.hpp"
+#include "core/input_error.hpp"
 
 namespace claspplan::cli {
 namespace {
@@ -16,11 +16,11 @@ servo::Points checked_curve(servo::Points points, const std::string& path, bool 
 
 servo::Points read_curve_file(const std::string& path, bool closed) {
   // x y z per line, '#' comments, validated
-  return checked_curve(perception::read_xyz(path), path, closed);
+  return checked_curve(read_xyz(path), path, closed);
 }
 
 servo::Points parse_curve_text(const std::string& text, const std::string& name, bool closed) {
-  return checked_curve(perception::parse_xyz(text, name), name, closed);
+  return checked_curve(parse_xyz(text, name), name, closed);
 }
 
 }  // namespace claspplan::cli

@@ -5,7 +5,8 @@
 
 #include <string>
 
-#include "perception/input_error.hpp"
+#include "core/input_error.hpp"
+
 #include "servo/linking.hpp"
 
 namespace claspplan::cli {

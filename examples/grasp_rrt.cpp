@@ -4,9 +4,9 @@
 #include <chrono>
 #include <random>
 
+#include "core/random_draws.hpp"
 #include <Eigen/Cholesky>
 
-#include "perception/random_draws.hpp"
 #include "robots/kinematics.hpp"
 #include "tsrrt/elapsed.hpp"
 

@@ -6,7 +6,7 @@
 #include <stdexcept>
 #include <unordered_map>
 
-#include "perception/input_error.hpp"
+#include "core/input_error.hpp"
 
 namespace claspplan::objects {
 
@@ -381,7 +381,7 @@ std::vector<std::pair<std::string, std::string>> write_depth_files(
 std::vector<std::pair<std::string, std::string>> write_purse_depth_example(
     const std::string& dir, int cameras, const perception::DepthNoise& noise) {
   TriangleMesh scene = purse();
-  perception::append_mesh(scene, ground_plane(1.2));
+  append_mesh(scene, ground_plane(1.2));
   return write_depth_files(scene, purse_cameras(cameras), dir, "purse", noise);
 }
 

@@ -15,17 +15,15 @@
 #include <string>
 #include <vector>
 
+#include "core/input_error.hpp"
+#include "core/mesh.hpp"
 #include <Eigen/Core>
 #include <Eigen/Geometry>
 
 #include "perception/camera.hpp"
 #include "perception/depth_render.hpp"
-#include "perception/input_error.hpp"
-#include "perception/mesh.hpp"
 
 namespace claspplan::objects {
-
-using perception::TriangleMesh;
 
 /// A signed distance (or any function negative inside, positive outside, roughly Lipschitz-1).
 using Sdf = std::function<double(const Eigen::Vector3d&)>;

@@ -5,6 +5,7 @@
 #include <memory>
 #include <random>
 
+#include "core/random_draws.hpp"
 #include <ompl/base/PlannerData.h>
 #include <ompl/base/ProblemDefinition.h>
 #include <ompl/base/SpaceInformation.h>
@@ -15,7 +16,6 @@
 #include <ompl/geometric/planners/rrt/RRTConnect.h>
 #include <ompl/util/Console.h>
 
-#include "perception/random_draws.hpp"
 #include "tsrrt/elapsed.hpp"
 
 namespace claspplan::cli {

@@ -6,11 +6,11 @@
 #include <fstream>
 #include <stdexcept>
 
+#include "core/file_io.hpp"
 #include <nlohmann/json.hpp>
 
 #include "examples/scenario.hpp"
 #include "perception/depth_render.hpp"
-#include "perception/file_io.hpp"
 #include "perception/sensed_space.hpp"
 
 namespace claspplan::cli {
@@ -45,12 +45,6 @@ Placement placement(const std::string& object, int pose) {
                           {0.85, 0, kPi / 2, 0, 0, 0},
                           {0.80, 0, kPi, 0, kPi / 2, 0}};
   return p[pose - 1];
-}
-
-Eigen::AlignedBox3d bounds(const std::vector<Vector3d>& points) {
-  Eigen::AlignedBox3d b;
-  for (const auto& p : points) b.extend(p);
-  return b;
 }
 
 // A QVGA Kinect (320 x 240, f = 262.5) cropped to the pixels where `region` projects: small
@@ -117,7 +111,7 @@ PaperScene paper_scene(const std::string& name) {
   PaperScene s;
   s.name = name;
   s.object = object;
-  s.mesh = perception::transformed(o.mesh, pose);
+  s.mesh = transformed(o.mesh, pose);
   s.near = pose * (obstructed ? o.hidden : o.clasp);
   s.loops = o.loops;
   s.targets = o.targets;
@@ -170,8 +164,8 @@ std::vector<std::string> write_paper_scene(const PaperScene& s, const std::strin
                                            double sigma, double dropout) {
   namespace fs = std::filesystem;
   fs::create_directories(dir);
-  objects::TriangleMesh scene = s.mesh;
-  perception::append_mesh(scene, boxes_mesh(s.boxes));
+  TriangleMesh scene = s.mesh;
+  append_mesh(scene, boxes_mesh(s.boxes));
   const auto names = paper_scene_names();
   const auto index = std::find(names.begin(), names.end(), s.name) - names.begin();
   std::vector<std::string> files;

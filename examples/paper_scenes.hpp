@@ -17,7 +17,7 @@ namespace claspplan::cli {
 struct PaperScene {
   std::string name;                                ///< <object>_<pose> or chair_obstructed
   std::string object;                              ///< a paper_object_names() entry
-  objects::TriangleMesh mesh;                      ///< the object, world frame
+  TriangleMesh mesh;                               ///< the object, world frame
   std::vector<tsrrt::EnvironmentBox> boxes;        ///< floor (and table)
   std::vector<perception::CameraModel> cameras;    ///< cropped to the object
   Eigen::AlignedBox3d workspace;                   ///< perception crop around the object

@@ -4,9 +4,8 @@
 #include <fstream>
 #include <stdexcept>
 
+#include "core/input_error.hpp"
 #include <nlohmann/json.hpp>
-
-#include "perception/input_error.hpp"
 
 namespace claspplan::cli {
 namespace {

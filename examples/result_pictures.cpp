@@ -1,8 +1,8 @@
 #include "examples/result_pictures.hpp"
 
+#include "core/png_files.hpp"
 #include <Eigen/Geometry>
 
-#include "perception/png_files.hpp"
 #include "robots/kinematics.hpp"
 
 namespace claspplan::cli {
@@ -164,7 +164,7 @@ void write_path_poses(const SceneGeometry& scene, const std::vector<Eigen::Vecto
   cv::hconcat(panels[0], panels[1], top);
   cv::hconcat(panels[2], panels[3], bottom);
   cv::vconcat(top, bottom, all);
-  perception::write_png(file, all);
+  write_png(file, all);
 }
 
 }  // namespace claspplan::cli

@@ -7,10 +7,10 @@
 #include <optional>
 #include <string>
 
+#include "core/input_error.hpp"
 #include <nlohmann/json.hpp>
 
 #include "examples/scenario.hpp"
-#include "perception/input_error.hpp"
 
 namespace claspplan::cli {
 

@@ -6,13 +6,14 @@
 #include <set>
 #include <sstream>
 
+#include "core/file_io.hpp"
+#include "core/input_error.hpp"
+#include "core/yaml_field.hpp"
+
 #include "examples/objects.hpp"
 #include "examples/paper_objects.hpp"
 #include "examples/scene_render.hpp"
 #include "perception/camera.hpp"
-#include "perception/file_io.hpp"
-#include "perception/input_error.hpp"
-#include "perception/yaml_field.hpp"
 
 namespace claspplan::cli {
 namespace {
@@ -424,7 +425,7 @@ perception::PerceptionInputs build_inputs(const Scenario& s) {
     for (const auto& file : o.clouds) perception::add_cloud(in, file);
     return in;
   }
-  perception::TriangleMesh mesh;
+  TriangleMesh mesh;
   if (!o.mesh.empty()) {
     const perception::PerceptionInputs file = perception::load_inputs({o.mesh}, {});
     if (file.meshes.empty()) throw InputError(o.mesh + ": not a mesh");
@@ -444,15 +445,15 @@ perception::PerceptionInputs build_inputs(const Scenario& s) {
     plate.holes = o.shape->holes;
     mesh = objects::holed_plate(plate);
   }
-  mesh = perception::transformed(mesh, o.pose);
+  mesh = transformed(mesh, o.pose);
   if (o.cameras.empty()) {
     in.meshes.push_back(mesh);
     in.view_positions = o.views;
     return in;
   }
   // What a depth camera sees: the object and the environment.
-  perception::append_mesh(mesh, boxes_mesh(s.boxes));
-  perception::append_mesh(mesh, boxes_mesh(o.clutter));  // seen, but not told to the planner
+  append_mesh(mesh, boxes_mesh(s.boxes));
+  append_mesh(mesh, boxes_mesh(o.clutter));  // seen, but not told to the planner
   for (std::size_t i = 0; i < o.cameras.size(); ++i) {
     perception::DepthView view;
     view.camera = objects::kinect_camera(o.cameras[i].first, o.cameras[i].second);
@@ -480,14 +481,14 @@ Scenario load_scenario_text(const std::string& text, const std::string& path,
   });
 }
 
-perception::TriangleMesh boxes_mesh(const std::vector<EnvironmentBox>& boxes) {
-  perception::TriangleMesh out;
+TriangleMesh boxes_mesh(const std::vector<EnvironmentBox>& boxes) {
+  TriangleMesh out;
   for (const auto& b : boxes) {
     const RenderMesh box = box_mesh(b.size);
-    perception::TriangleMesh m;
+    TriangleMesh m;
     m.vertices = box.vertices;
     for (const auto& t : box.triangles) m.triangles.push_back({t[0], t[1], t[2]});
-    perception::append_mesh(out, perception::transformed(m, b.pose));
+    append_mesh(out, transformed(m, b.pose));
   }
   return out;
 }

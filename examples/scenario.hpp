@@ -9,11 +9,11 @@
 #include <string>
 #include <vector>
 
+#include "core/input_error.hpp"
 #include <Eigen/Geometry>
 
 #include "examples/objects.hpp"
 #include "perception/depth_render.hpp"
-#include "perception/input_error.hpp"
 #include "perception/pipeline.hpp"
 #include "servo/clasp_controller.hpp"
 #include "servo/controller_run.hpp"
@@ -90,7 +90,7 @@ Scenario load_scenario_text(const std::string& text, const std::string& path,
                             const std::string& base_dir);
 
 /// The boxes as one triangle mesh (what depth cameras see of the environment).
-perception::TriangleMesh boxes_mesh(const std::vector<EnvironmentBox>& boxes);
+TriangleMesh boxes_mesh(const std::vector<EnvironmentBox>& boxes);
 
 /// Builds the perception inputs the scenario's object describes (files read, shapes meshed,
 /// synthetic depth images rendered).

@@ -5,10 +5,9 @@
 #include <limits>
 #include <stdexcept>
 
+#include "core/png_files.hpp"
 #include <Eigen/Geometry>
 #include <opencv2/imgproc.hpp>
-
-#include "perception/png_files.hpp"
 
 namespace claspplan::cli {
 namespace {
@@ -215,7 +214,7 @@ void SceneImage::draw_label(const std::string& text, int row) {
 }
 
 void SceneImage::save(const std::string& path) const {
-  perception::write_png(path, image_);
+  write_png(path, image_);
 }
 
 View framing_view(const std::vector<Eigen::Vector3d>& points, const Eigen::Vector3d& direction,

@@ -8,13 +8,12 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "core/file_io_detail.hpp"
+#include "core/input_error.hpp"
+#include "core/png_files.hpp"
+#include "core/yaml_field.hpp"
 #include <Eigen/SVD>
 #include <opencv2/core.hpp>
-
-#include "perception/file_io_detail.hpp"
-#include "perception/input_error.hpp"
-#include "perception/png_files.hpp"
-#include "perception/yaml_field.hpp"
 
 namespace claspplan::perception {
 

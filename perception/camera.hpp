@@ -17,10 +17,9 @@
 #include <string>
 #include <vector>
 
+#include "core/input_error.hpp"
 #include <Eigen/Core>
 #include <Eigen/Geometry>
-
-#include "perception/input_error.hpp"
 
 namespace claspplan::perception {
 

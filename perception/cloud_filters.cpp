@@ -8,6 +8,8 @@
 #include <stdexcept>
 #include <thread>
 
+#include "core/parallel.hpp"
+#include "core/random_draws.hpp"
 #include <pcl/point_cloud.h>
 #include <pcl/point_types.h>
 #include <pcl/sample_consensus/method_types.h>
@@ -15,9 +17,7 @@
 #include <pcl/segmentation/sac_segmentation.h>
 
 #include "perception/first_occurrences.hpp"
-#include "perception/parallel.hpp"
 #include "perception/point_index.hpp"
-#include "perception/random_draws.hpp"
 
 namespace claspplan::perception {
 

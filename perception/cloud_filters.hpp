@@ -5,9 +5,8 @@
 #include <cstdint>
 #include <limits>
 
+#include "core/mesh.hpp"
 #include <Eigen/Geometry>
-
-#include "perception/mesh.hpp"
 
 namespace claspplan::perception {
 

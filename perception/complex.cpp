@@ -3,8 +3,9 @@
 #include <cmath>
 #include <stdexcept>
 
+#include "core/input_error.hpp"
+
 #include "perception/cloud_filters.hpp"
-#include "perception/input_error.hpp"
 
 namespace claspplan::perception {
 

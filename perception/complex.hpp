@@ -7,7 +7,7 @@
 #include <string>
 #include <vector>
 
-#include "perception/mesh.hpp"
+#include "core/mesh.hpp"
 
 namespace claspplan::perception {
 

@@ -7,6 +7,7 @@
 #include <thread>
 #include <utility>
 
+#include "core/input_error.hpp"
 #include <CGAL/Delaunay_triangulation_3.h>
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 #include <CGAL/Triangulation_data_structure_3.h>
@@ -14,7 +15,6 @@
 
 #include "perception/complex.hpp"
 #include "perception/counting_sort.hpp"
-#include "perception/input_error.hpp"
 
 namespace claspplan::perception {
 

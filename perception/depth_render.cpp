@@ -6,8 +6,8 @@
 #include <random>
 #include <stdexcept>
 
-#include "perception/input_error.hpp"
-#include "perception/random_draws.hpp"
+#include "core/input_error.hpp"
+#include "core/random_draws.hpp"
 
 namespace claspplan::perception {
 

@@ -4,8 +4,9 @@
 
 #include <cstdint>
 
+#include "core/mesh.hpp"
+
 #include "perception/camera.hpp"
-#include "perception/mesh.hpp"
 
 namespace claspplan::perception {
 

@@ -7,7 +7,7 @@
 #include <stdexcept>
 #include <string>
 
-#include "perception/input_error.hpp"
+#include "core/input_error.hpp"
 
 namespace claspplan::perception {
 

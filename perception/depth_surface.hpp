@@ -30,11 +30,11 @@
 #include <optional>
 #include <vector>
 
+#include "core/mesh.hpp"
 #include <Eigen/Core>
 #include <Eigen/Geometry>
 
 #include "perception/camera.hpp"
-#include "perception/mesh.hpp"
 
 namespace claspplan::perception {
 

@@ -6,10 +6,9 @@
 #include <numeric>
 #include <stdexcept>
 
+#include "core/png_files.hpp"
 #include <opencv2/core.hpp>
 #include <opencv2/imgproc.hpp>
-
-#include "perception/png_files.hpp"
 
 namespace claspplan::perception {
 

@@ -16,10 +16,11 @@
 #include <unordered_map>
 #include <utility>
 
+#include "core/input_error.hpp"
+#include "core/parallel.hpp"
+
 #include "perception/counting_sort.hpp"
 #include "perception/homology_graph.hpp"
-#include "perception/input_error.hpp"
-#include "perception/parallel.hpp"
 
 namespace claspplan::perception {
 

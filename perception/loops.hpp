@@ -43,8 +43,9 @@
 #include <string>
 #include <vector>
 
+#include "core/mesh.hpp"
+
 #include "perception/camera.hpp"
-#include "perception/mesh.hpp"
 #include "perception/sensed_space.hpp"
 
 namespace claspplan::perception {

@@ -7,11 +7,12 @@
 #include <filesystem>
 #include <stdexcept>
 
+#include "core/file_io.hpp"
+#include "core/input_error.hpp"
+#include "core/parallel.hpp"
+
 #include "perception/cloud_filters.hpp"
 #include "perception/depth_render.hpp"
-#include "perception/file_io.hpp"
-#include "perception/input_error.hpp"
-#include "perception/parallel.hpp"
 #include "perception/sensor_cloud.hpp"
 
 namespace claspplan::perception {

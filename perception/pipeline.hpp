@@ -31,12 +31,13 @@
 #include <string>
 #include <vector>
 
+#include "core/input_error.hpp"
+#include "core/mesh.hpp"
+
 #include "perception/camera.hpp"
 #include "perception/complex.hpp"
 #include "perception/homology.hpp"
-#include "perception/input_error.hpp"
 #include "perception/loops.hpp"
-#include "perception/mesh.hpp"
 #include "perception/sensed_space.hpp"
 
 namespace claspplan::perception {

@@ -5,9 +5,8 @@
 #include <utility>
 #include <vector>
 
+#include "core/mesh.hpp"
 #include <nanoflann.hpp>
-
-#include "perception/mesh.hpp"
 
 namespace claspplan::perception {
 

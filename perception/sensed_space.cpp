@@ -10,7 +10,7 @@
 #include <string>
 #include <utility>
 
-#include "perception/parallel.hpp"
+#include "core/parallel.hpp"
 
 namespace claspplan::perception {
 

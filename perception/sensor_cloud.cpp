@@ -7,7 +7,7 @@
 #include <utility>
 #include <vector>
 
-#include "perception/file_io_detail.hpp"
+#include "core/file_io_detail.hpp"
 
 namespace claspplan::perception {
 

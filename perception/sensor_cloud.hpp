@@ -11,10 +11,10 @@
 #include <optional>
 #include <string>
 
+#include "core/mesh.hpp"
 #include <Eigen/Geometry>
 
 #include "perception/camera.hpp"
-#include "perception/mesh.hpp"
 
 namespace claspplan::perception {
 

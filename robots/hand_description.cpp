@@ -8,7 +8,8 @@
 #include <stdexcept>
 #include <vector>
 
-#include "perception/yaml_field.hpp"
+#include "core/yaml_field.hpp"
+
 #include "robots/robot_model_detail.hpp"
 
 namespace claspplan::robots::robot_model_detail {

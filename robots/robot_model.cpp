@@ -9,7 +9,8 @@
 #include <sstream>
 #include <stdexcept>
 
-#include "perception/input_error.hpp"
+#include "core/input_error.hpp"
+
 #include "robots/embedded_models.hpp"
 #include "robots/robot_model_detail.hpp"
 

@@ -15,10 +15,9 @@
 #include <utility>
 #include <vector>
 
+#include "core/input_error.hpp"
 #include <Eigen/Core>
 #include <Eigen/Geometry>
-
-#include "perception/input_error.hpp"
 
 namespace claspplan::robots {
 

@@ -3,7 +3,8 @@
 #include <algorithm>
 #include <cmath>
 
-#include "perception/random_draws.hpp"
+#include "core/random_draws.hpp"
+
 #include "robots/kinematics.hpp"
 #include "tsrrt/approach.hpp"
 

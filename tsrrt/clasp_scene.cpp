@@ -6,8 +6,9 @@
 #include <numeric>
 #include <stdexcept>
 
+#include "core/input_error.hpp"
+
 #include "perception/depth_surface.hpp"
-#include "perception/input_error.hpp"
 #include "tsrrt/clasp_setup.hpp"
 #include "tsrrt/elapsed.hpp"
 
@@ -78,7 +79,7 @@ void object_collision_mesh(const perception::ObjectModel& object, const percepti
     perception::DepthSurfaceOptions so;
     so.workspace = workspace;
     so.support_plane = object.support_plane;
-    const perception::TriangleMesh seen = perception::depth_surface_mesh(object.views, so);
+    const TriangleMesh seen = perception::depth_surface_mesh(object.views, so);
     vertices = seen.vertices;
     for (const auto& t : seen.triangles) triangles.emplace_back(t[0], t[1], t[2]);
   } else {

@@ -7,8 +7,9 @@
 #include <stdexcept>
 #include <utility>
 
-#include "perception/input_error.hpp"
-#include "perception/mesh.hpp"
+#include "core/input_error.hpp"
+#include "core/mesh.hpp"
+
 #include "robots/kinematics.hpp"
 #include "tsrrt/clasp_problem.hpp"
 #include "tsrrt/clasp_scene.hpp"
@@ -24,7 +25,7 @@ using Say = std::function<void(const std::string&)>;
 // that the tree can find its way around obstacles next to the object.
 void fit_sample_box(PlannerParameters& p, const perception::ObjectModel& object,
                     const Eigen::Vector3d& hand_start) {
-  Eigen::AlignedBox3d box = perception::bounds(object.cloud);
+  Eigen::AlignedBox3d box = bounds(object.cloud);
   box.extend(hand_start);
   p.sample_min = box.min() - Eigen::Vector3d::Constant(0.3);
   p.sample_max = box.max() + Eigen::Vector3d::Constant(0.3);

@@ -22,9 +22,9 @@
 #include <string>
 #include <vector>
 
+#include "core/input_error.hpp"
 #include <Eigen/Geometry>
 
-#include "perception/input_error.hpp"
 #include "perception/pipeline.hpp"
 #include "robots/collision_world.hpp"
 #include "robots/hand_size.hpp"

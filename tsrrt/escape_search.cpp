@@ -1,7 +1,7 @@
 // The escape stages of the secure-clasp check (see escape_search.hpp). Our own small RRT-Connect,
 // not OMPL's planners: OMPL draws from a process-global seed, so its plans would not be the same
 // byte for byte from one run (or one thread interleaving) to the next, and a verdict must be.
-// Random numbers come from std::mt19937_64's raw output (perception/random_draws.hpp) only.
+// Random numbers come from std::mt19937_64's raw output (core/random_draws.hpp) only.
 #include "tsrrt/escape_search.hpp"
 
 #include <algorithm>
@@ -9,7 +9,8 @@
 #include <limits>
 #include <random>
 
-#include "perception/random_draws.hpp"
+#include "core/random_draws.hpp"
+
 #include "robots/kinematics.hpp"
 #include "tsrrt/secure_clasp.hpp"
 #include "tsrrt/secure_clasp_detail.hpp"

@@ -2,10 +2,10 @@
 // failure, std::invalid_argument from an internal precondition included.
 #include <stdexcept>
 
+#include "core/input_error.hpp"
 #include <gtest/gtest.h>
 
 #include "examples/command.hpp"
-#include "perception/input_error.hpp"
 #include "servo/linking.hpp"
 #include "test/support/cli_runner.hpp"
 

@@ -1,12 +1,12 @@
 // Loop choice for a hand (issue "Real objects"): a container's mouth is never a clasp, a jug's
 // handle is chosen by every hand, and a hole narrower than a hand's fingers is refused with the
 // reason, in the library and in `claspplan loops --robot`.
+#include "core/file_io.hpp"
 #include <gtest/gtest.h>
 
 #include "examples/objects.hpp"
 #include "examples/scenario.hpp"
 #include "perception/depth_render.hpp"
-#include "perception/file_io.hpp"
 #include "perception/pipeline.hpp"
 #include "robots/hand_size.hpp"
 #include "test/support/cli_runner.hpp"
@@ -149,7 +149,7 @@ std::string upright_ring(TempDir& dir, double R, double r) {
   pose.translate(Eigen::Vector3d(0.55, 0, 0.2));
   pose.rotate(Eigen::AngleAxisd(M_PI / 2, Eigen::Vector3d::UnitY()));
   const std::string mesh = dir.file("ring.obj");
-  perception::write_obj(objects::torus_mesh(R, r, pose), mesh);
+  write_obj(objects::torus_mesh(R, r, pose), mesh);
   return mesh;
 }
 

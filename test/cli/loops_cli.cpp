@@ -1,11 +1,11 @@
 // `claspplan loops` as a user runs it: depth files, clouds and meshes in, loops and targets out;
 // every bad input is exit 2 with a one-line reason; an object without loops is exit 0.
+#include "core/file_io.hpp"
 #include <gtest/gtest.h>
 #include <opencv2/core.hpp>
 #include <opencv2/imgcodecs.hpp>
 
 #include "examples/objects.hpp"
-#include "perception/file_io.hpp"
 #include "test/support/cli_runner.hpp"
 
 namespace claspplan::test {
@@ -88,7 +88,7 @@ TEST(LoopsCli, HumanSummaryAndDeterminism) {
 
 TEST(LoopsCli, MeshesAndClouds) {
   TempDir dir;
-  perception::write_obj(objects::sphere_mesh(0.1), dir.file("sphere.obj"));
+  write_obj(objects::sphere_mesh(0.1), dir.file("sphere.obj"));
   const CliResult sphere = run_cli({"loops", dir.file("sphere.obj")});
   EXPECT_EQ(sphere.exit_code, 0) << sphere.err;
   EXPECT_NE(sphere.out.find("no loops"), std::string::npos) << sphere.out;
@@ -97,12 +97,12 @@ TEST(LoopsCli, MeshesAndClouds) {
   EXPECT_TRUE(sj["loops"].empty());
   EXPECT_TRUE(sj["targets"].empty());
 
-  perception::write_ply(objects::torus_mesh(0.1, 0.03), dir.file("torus.ply"));
+  write_ply(objects::torus_mesh(0.1, 0.03), dir.file("torus.ply"));
   EXPECT_EQ(run_cli({"loops", dir.file("torus.ply"), "--json"}).json()["beta1"], 2);
   EXPECT_EQ(run_cli({"loops", dir.file("torus.ply"), "--d", "0.09", "--json"}).json()["beta1"], 1);
 
   // The purse's visible surface from two positions (one with a negative coordinate).
-  perception::write_stl(objects::purse(), dir.file("purse.stl"));
+  write_stl(objects::purse(), dir.file("purse.stl"));
   const auto pj = run_cli({"loops", dir.file("purse.stl"), "--view", "0.25,-0.75,0.65",
                            "--view=-0.35,0.7,0.7", "--json"})
                       .json();
@@ -110,11 +110,9 @@ TEST(LoopsCli, MeshesAndClouds) {
   EXPECT_TRUE(pj["loops"][0]["claspable"].get<bool>());
 
   // A cloud file: the torus sampled, as .xyz and .pcd.
-  perception::write_xyz(perception::sample_surface(objects::torus_mesh(0.1, 0.03), 8000, 3),
-                        dir.file("torus.xyz"));
+  write_xyz(sample_surface(objects::torus_mesh(0.1, 0.03), 8000, 3), dir.file("torus.xyz"));
   EXPECT_EQ(run_cli({"loops", dir.file("torus.xyz"), "--d", "0.09", "--json"}).json()["beta1"], 1);
-  perception::write_pcd(perception::sample_surface(objects::torus_mesh(0.1, 0.03), 8000, 3),
-                        dir.file("torus.pcd"));
+  write_pcd(sample_surface(objects::torus_mesh(0.1, 0.03), 8000, 3), dir.file("torus.pcd"));
   // A cloud goes through the depth stages: --keep-plane, or the torus's flat underside is taken
   // for its table.
   const auto tj =
@@ -137,7 +135,7 @@ TEST(LoopsCli, BadInputIsExitTwoWithOneLine) {
   expect_bad_input({"loops", dir.write("flat.xyz", flat)}, "coplanar");
   expect_bad_input({"loops", dir.write("wrong.ply", "solid\nfacet\n")}, "not a PLY");
   expect_bad_input({"loops", dir.write("wrong.dat", "1 2 3\n")}, "unknown file type");
-  perception::write_ply(objects::torus_mesh(0.1, 0.03), dir.file("torus.ply"));
+  write_ply(objects::torus_mesh(0.1, 0.03), dir.file("torus.ply"));
   std::string ply = slurp(dir.file("torus.ply"));
   expect_bad_input({"loops", dir.write("cut.ply", ply.substr(0, ply.size() / 2))}, "truncated");
   expect_bad_input({"loops", dir.file("missing.pcd")}, "not found");

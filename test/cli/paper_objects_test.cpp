@@ -16,7 +16,7 @@ TEST(PaperObjects, GenusIsThePapersLoopCount) {
   for (const auto& name : objects::paper_object_names()) {
     const objects::PaperObject o = objects::paper_object(name);
     EXPECT_EQ(o.loops, paper.at(name)) << name;
-    EXPECT_EQ(perception::euler_characteristic(o.mesh), 2 - 2 * o.loops) << name;
+    EXPECT_EQ(euler_characteristic(o.mesh), 2 - 2 * o.loops) << name;
     // The hole centres are empty space: no vertex within 1 cm.
     for (const auto& p : {o.clasp, o.hidden}) {
       double nearest = 1e9;

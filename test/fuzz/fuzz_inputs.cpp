@@ -5,11 +5,12 @@
 #include <map>
 #include <stdexcept>
 
+#include "core/file_io.hpp"
+
 #include "examples/curve_file.hpp"
 #include "examples/result_file.hpp"
 #include "examples/scenario.hpp"
 #include "perception/camera.hpp"
-#include "perception/file_io.hpp"
 #include "perception/sensor_cloud.hpp"
 #include "robots/embedded_models.hpp"
 #include "robots/robot_model.hpp"
@@ -30,7 +31,7 @@ perception::CameraModel depth_camera() {
 }
 
 void geometry(const std::string& ext, const std::string& data) {
-  perception::parse_geometry(data, "fuzz." + ext);
+  parse_geometry(data, "fuzz." + ext);
 }
 
 // A cloud file as geometry and as sensor data (its grid, viewpoint and the depth view made of it):

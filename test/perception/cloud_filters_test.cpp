@@ -8,10 +8,10 @@
 #include <random>
 #include <utility>
 
+#include "core/random_draws.hpp"
 #include <gtest/gtest.h>
 
 #include "perception/first_occurrences.hpp"
-#include "perception/random_draws.hpp"
 
 namespace claspplan::perception {
 namespace {

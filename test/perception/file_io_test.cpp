@@ -1,6 +1,6 @@
 // Readers and writers: round trips in every format, and every kind of bad file rejected with a
 // one-line reason naming the file.
-#include "perception/file_io.hpp"
+#include "core/file_io.hpp"
 
 #include <cmath>
 #include <cstdint>

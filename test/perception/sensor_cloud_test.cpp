@@ -13,11 +13,11 @@
 #include <random>
 #include <set>
 
+#include "core/file_io.hpp"
 #include <gtest/gtest.h>
 
 #include "examples/objects.hpp"
 #include "perception/depth_render.hpp"
-#include "perception/file_io.hpp"
 #include "test/support/temp_dir.hpp"
 
 namespace claspplan::perception {

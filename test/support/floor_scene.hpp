@@ -12,13 +12,12 @@
 namespace claspplan::test {
 
 /// `object` (standing on z = 0, centred in x and y) turned by `yaw` about z and put at x = 0.55.
-inline perception::PerceptionInputs seen_on_floor(const perception::TriangleMesh& object,
-                                                  double yaw = 0.0) {
+inline perception::PerceptionInputs seen_on_floor(const TriangleMesh& object, double yaw = 0.0) {
   Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();
   pose.translate(Eigen::Vector3d(0.55, 0, 0));
   pose.rotate(Eigen::AngleAxisd(yaw, Eigen::Vector3d::UnitZ()));
-  perception::TriangleMesh scene = perception::transformed(object, pose);
-  perception::append_mesh(scene, objects::ground_plane(2.0, 0.0, {0.5, 0.0}));
+  TriangleMesh scene = transformed(object, pose);
+  append_mesh(scene, objects::ground_plane(2.0, 0.0, {0.5, 0.0}));
   perception::PerceptionInputs in;
   perception::DepthNoise noise;
   noise.sigma = 0.001;

@@ -11,7 +11,7 @@
 
 namespace claspplan::test {
 
-inline perception::TriangleMesh purse() {
+inline TriangleMesh purse() {
   objects::Purse p;
   p.body = Eigen::Vector3d(0.30, 0.14, 0.18);
   p.handle_radius = 0.12;
@@ -20,7 +20,7 @@ inline perception::TriangleMesh purse() {
 }
 
 /// A request for `object` on the floor, for the built-in robot `robot` from the scenarios' start.
-inline tsrrt::ClaspRequest floor_request(const perception::TriangleMesh& object,
+inline tsrrt::ClaspRequest floor_request(const TriangleMesh& object,
                                          const std::string& robot = "kr5_sdh",
                                          std::uint64_t seed = 1) {
   tsrrt::ClaspRequest r;

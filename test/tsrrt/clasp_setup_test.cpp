@@ -20,7 +20,7 @@ const std::shared_ptr<const robots::RobotModel>& sdh() {
   return robot;
 }
 
-tsrrt::ClaspRequest request_for(const perception::TriangleMesh& object) {
+tsrrt::ClaspRequest request_for(const TriangleMesh& object) {
   tsrrt::ClaspRequest r = floor_request(object);
   r.robot = sdh();
   return r;

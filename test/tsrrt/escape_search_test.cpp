@@ -149,7 +149,7 @@ TEST(EscapeSearch, GravityHoldsWhatCanOnlyLeaveUpward) {
 Ring cup_hooked_on_thumb() {
   objects::Container c;  // radius 4.5 cm, wall 4 mm, 10 cm high, no handle
   const Eigen::Vector3d at(-0.035, 0, -0.02 - c.height);  // the thumb on the axis, rim 2 cm below
-  const perception::TriangleMesh mesh = objects::container(c);
+  const TriangleMesh mesh = objects::container(c);
   Ring cup;
   for (const auto& v : mesh.vertices) cup.mesh.vertices.push_back(v + at);
   for (const auto& t : mesh.triangles) cup.mesh.triangles.emplace_back(t[0], t[1], t[2]);

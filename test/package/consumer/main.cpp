@@ -33,7 +33,7 @@ int main() try {
   std::printf("home in collision: %s\n", world.in_collision(sdh.home) ? "yes" : "no");
 
   // perception: a solid ring of points (CGAL Delaunay, K_d, homology) has one loop.
-  perception::PointCloud ring;
+  PointCloud ring;
   for (int i = 0; i < 60; ++i)
     for (int j = 0; j < 8; ++j) {
       const double u = 2 * M_PI * i / 60, v = 2 * M_PI * (j + 0.5 * (i % 2)) / 8;

@@ -1,13 +1,13 @@
 // read_geometry() and parse_geometry(): dispatch by extension. The readers and writers of each
 // format family are in cloud_files.cpp (PCD, XYZ), ply_files.cpp (PLY clouds and meshes) and
 // mesh_files.cpp (OBJ, OFF, STL); their shared helpers in file_io_detail.hpp.
-#include "perception/file_io.hpp"
+#include "core/file_io.hpp"
 
 #include <utility>
 
-#include "perception/file_io_detail.hpp"
+#include "core/file_io_detail.hpp"
 
-namespace claspplan::perception {
+namespace claspplan {
 
 using namespace file_io_detail;
 
@@ -53,4 +53,4 @@ GeometryFile parse_geometry(const std::string& data, const std::string& path) {
   return g;
 }
 
-}  // namespace claspplan::perception
+}  // namespace claspplan

@@ -4,10 +4,10 @@
 #include <cstring>
 #include <map>
 
-#include "perception/file_io.hpp"
-#include "perception/file_io_detail.hpp"
+#include "core/file_io.hpp"
+#include "core/file_io_detail.hpp"
 
-namespace claspplan::perception {
+namespace claspplan {
 
 using namespace file_io_detail;
 
@@ -261,4 +261,4 @@ void write_stl(const TriangleMesh& mesh, const std::string& path, bool binary) {
   finish(out, path);
 }
 
-}  // namespace claspplan::perception
+}  // namespace claspplan

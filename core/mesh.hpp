@@ -10,7 +10,7 @@
 #include <Eigen/Core>
 #include <Eigen/Geometry>
 
-namespace claspplan::perception {
+namespace claspplan {
 
 /// A point cloud in metres (world frame unless said otherwise).
 using PointCloud = std::vector<Eigen::Vector3d>;
@@ -57,4 +57,4 @@ bool is_watertight(const TriangleMesh& mesh);
 /// V - E + F of the mesh (2 - 2g for a closed orientable surface of genus g).
 int euler_characteristic(const TriangleMesh& mesh);
 
-}  // namespace claspplan::perception
+}  // namespace claspplan

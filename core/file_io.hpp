@@ -21,10 +21,10 @@
 
 #include <string>
 
-#include "perception/input_error.hpp"
-#include "perception/mesh.hpp"
+#include "core/input_error.hpp"
+#include "core/mesh.hpp"
 
-namespace claspplan::perception {
+namespace claspplan {
 
 /// What a geometry file holds: a cloud, or a mesh (the cloud is empty then).
 struct GeometryFile {
@@ -64,4 +64,4 @@ void write_obj(const TriangleMesh& mesh, const std::string& path);
 void write_stl(const TriangleMesh& mesh, const std::string& path, bool binary = true);
 void write_off(const TriangleMesh& mesh, const std::string& path);
 
-}  // namespace claspplan::perception
+}  // namespace claspplan

@@ -4,10 +4,10 @@
 #include <string>
 #include <vector>
 
-#include "perception/file_io.hpp"
-#include "perception/file_io_detail.hpp"
+#include "core/file_io.hpp"
+#include "core/file_io_detail.hpp"
 
-namespace claspplan::perception {
+namespace claspplan {
 
 using namespace file_io_detail;
 
@@ -358,4 +358,4 @@ void write_xyz(const PointCloud& cloud, const std::string& path) {
   finish(out, path);
 }
 
-}  // namespace claspplan::perception
+}  // namespace claspplan

@@ -1,13 +1,12 @@
-#include "perception/png_files.hpp"
+#include "core/png_files.hpp"
 
 #include <cstring>
 #include <stdexcept>
 
+#include "core/input_error.hpp"
 #include <png.h>
 
-#include "perception/input_error.hpp"
-
-namespace claspplan::perception {
+namespace claspplan {
 namespace {
 
 // The simplified API's message, or a generic one.
@@ -84,4 +83,4 @@ void write_png(const std::string& path, const cv::Mat& image) {
              image.data, static_cast<png_int_32>(image.step[0]));
 }
 
-}  // namespace claspplan::perception
+}  // namespace claspplan

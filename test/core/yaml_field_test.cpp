@@ -1,6 +1,6 @@
 // The typed YAML reader behind the scenario, hand-description and camera files: every error is one
 // line naming the file, the line and the key path; absent sections read as absent keys.
-#include "perception/yaml_field.hpp"
+#include "core/yaml_field.hpp"
 
 #include <functional>
 #include <string>

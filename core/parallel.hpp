@@ -8,7 +8,7 @@
 #include <thread>
 #include <vector>
 
-namespace claspplan::perception {
+namespace claspplan {
 
 /// Calls body(begin, end) on disjoint chunks covering [0, n): one chunk per thread, `threads`
 /// threads at most (0: all cores), the first chunk on the calling thread. The first exception
@@ -34,4 +34,4 @@ void parallel_chunks(std::size_t n, int threads, Body&& body) {
     if (f) std::rethrow_exception(f);
 }
 
-}  // namespace claspplan::perception
+}  // namespace claspplan

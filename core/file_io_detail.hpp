@@ -9,10 +9,10 @@
 #include <string>
 #include <vector>
 
-#include "perception/file_io.hpp"
-#include "perception/mesh.hpp"
+#include "core/file_io.hpp"
+#include "core/mesh.hpp"
 
-namespace claspplan::perception::file_io_detail {
+namespace claspplan::file_io_detail {
 
 constexpr long long kMaxCount = 50'000'000;
 
@@ -119,4 +119,4 @@ void put(std::ofstream& out, T v) {
 /// Flushes; throws std::runtime_error when writing failed.
 void finish(std::ofstream& out, const std::string& path);
 
-}  // namespace claspplan::perception::file_io_detail
+}  // namespace claspplan::file_io_detail

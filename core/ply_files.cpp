@@ -4,10 +4,10 @@
 #include <map>
 #include <utility>
 
-#include "perception/file_io.hpp"
-#include "perception/file_io_detail.hpp"
+#include "core/file_io.hpp"
+#include "core/file_io_detail.hpp"
 
-namespace claspplan::perception {
+namespace claspplan {
 
 using namespace file_io_detail;
 
@@ -356,4 +356,4 @@ void write_ply(const TriangleMesh& mesh, const std::string& path, bool binary) {
   write_ply_impl(mesh.vertices, &mesh.triangles, path, binary);
 }
 
-}  // namespace claspplan::perception
+}  // namespace claspplan

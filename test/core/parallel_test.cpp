@@ -1,6 +1,6 @@
 // parallel_chunks: every index handled exactly once whatever the thread count, and a failure in
 // any chunk reaches the caller (the first in chunk order).
-#include "perception/parallel.hpp"
+#include "core/parallel.hpp"
 
 #include <atomic>
 #include <stdexcept>

@@ -1,4 +1,4 @@
-#include "perception/mesh.hpp"
+#include "core/mesh.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -6,10 +6,10 @@
 #include <random>
 #include <stdexcept>
 
-#include "perception/input_error.hpp"
-#include "perception/random_draws.hpp"
+#include "core/input_error.hpp"
+#include "core/random_draws.hpp"
 
-namespace claspplan::perception {
+namespace claspplan {
 
 namespace {
 
@@ -157,4 +157,4 @@ int euler_characteristic(const TriangleMesh& mesh) {
   return v - static_cast<int>(edge_use(mesh).size()) + static_cast<int>(mesh.triangles.size());
 }
 
-}  // namespace claspplan::perception
+}  // namespace claspplan

@@ -12,10 +12,9 @@
 #include <utility>
 #include <vector>
 
+#include "core/input_error.hpp"
 #include <Eigen/Core>
 #include <yaml-cpp/yaml.h>
-
-#include "perception/input_error.hpp"
 
 namespace claspplan {
 

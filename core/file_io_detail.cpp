@@ -1,4 +1,4 @@
-#include "perception/file_io_detail.hpp"
+#include "core/file_io_detail.hpp"
 
 #include <cctype>
 #include <cerrno>
@@ -7,9 +7,9 @@
 #include <iomanip>
 #include <stdexcept>
 
-#include "perception/input_error.hpp"
+#include "core/input_error.hpp"
 
-namespace claspplan::perception::file_io_detail {
+namespace claspplan::file_io_detail {
 
 [[noreturn]] void fail(const std::string& path, const std::string& message) {
   throw InputError(path + ": " + message);
@@ -105,4 +105,4 @@ void finish(std::ofstream& out, const std::string& path) {
   if (!out) throw std::runtime_error(path + ": write failed");
 }
 
-}  // namespace claspplan::perception::file_io_detail
+}  // namespace claspplan::file_io_detail

@@ -9,7 +9,7 @@
 
 #include <opencv2/core/mat.hpp>
 
-namespace claspplan::perception {
+namespace claspplan {
 
 struct Gray16Image {
   int width = 0, height = 0;
@@ -30,4 +30,4 @@ void write_png_gray16(const std::string& path, const Gray16Image& image);
 /// the file cannot be written, std::invalid_argument for another image type.
 void write_png(const std::string& path, const cv::Mat& image);
 
-}  // namespace claspplan::perception
+}  // namespace claspplan
