@@ -2,17 +2,16 @@
 // [--out DIR] [--json]` and `claspplan bench --merge DIR...`: runs a suite's scenarios over seeds
 // through the same pipeline as `claspplan run` and writes a report (examples/bench_report.hpp).
 #include <algorithm>
-#include <atomic>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <mutex>
-#include <thread>
 #include <tuple>
 
-#include "core/input_error.hpp"
 #include <unistd.h>
 
+#include "core/input_error.hpp"
+#include "core/parallel.hpp"
 #include "examples/bench_report.hpp"
 #include "examples/bench_suite.hpp"
 #include "examples/command.hpp"
@@ -160,28 +159,20 @@ class Progress {
 std::vector<BenchRecord> run_cases(const std::vector<BenchCase>& cases, const BenchOptions& o) {
   std::vector<BenchRecord> records(cases.size());
   Progress progress(static_cast<int>(cases.size()));
-  std::atomic<std::size_t> next{0};
-  const auto work = [&] {
-    for (std::size_t i; (i = next++) < cases.size();) {
-      std::string stem = cases[i].name;
-      for (char& ch : stem) ch = ch == '/' ? '_' : ch;
-      if (!cases[i].method.empty()) stem += "_" + cases[i].method;
-      if (cases[i].tolerance > 0) {
-        char tolerance[32];
-        std::snprintf(tolerance, sizeof tolerance, "_tolerance%.2f", cases[i].tolerance);
-        stem += tolerance;
-      }
-      const fs::path dir =
-          fs::path(o.out) / "runs" / (stem + "_seed" + std::to_string(cases[i].seed));
-      records[i] = run_case(cases[i], o, dir);
-      progress.done(records[i]);
+  parallel_for(cases.size(), o.jobs, [&](std::size_t i, int) {
+    std::string stem = cases[i].name;
+    for (char& ch : stem) ch = ch == '/' ? '_' : ch;
+    if (!cases[i].method.empty()) stem += "_" + cases[i].method;
+    if (cases[i].tolerance > 0) {
+      char tolerance[32];
+      std::snprintf(tolerance, sizeof tolerance, "_tolerance%.2f", cases[i].tolerance);
+      stem += tolerance;
     }
-  };
-  std::vector<std::thread> pool;
-  const int jobs = std::max(1, std::min<int>(o.jobs, static_cast<int>(cases.size())));
-  for (int t = 1; t < jobs; ++t) pool.emplace_back(work);
-  work();
-  for (auto& t : pool) t.join();
+    const fs::path dir =
+        fs::path(o.out) / "runs" / (stem + "_seed" + std::to_string(cases[i].seed));
+    records[i] = run_case(cases[i], o, dir);
+    progress.done(records[i]);
+  });
   return records;
 }
 

@@ -2,17 +2,17 @@
 #include <algorithm>
 #include <array>
 #include <cstdint>
-#include <future>
+#include <optional>
 #include <stdexcept>
-#include <thread>
 #include <utility>
 
-#include "core/input_error.hpp"
 #include <CGAL/Delaunay_triangulation_3.h>
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 #include <CGAL/Triangulation_data_structure_3.h>
 #include <CGAL/Triangulation_vertex_base_with_info_3.h>
 
+#include "core/input_error.hpp"
+#include "core/parallel.hpp"
 #include "perception/complex.hpp"
 #include "perception/counting_sort.hpp"
 
@@ -129,55 +129,50 @@ DelaunayGraph delaunay_3d(const PointCloud& points) {
   }
   // The edges and the triangles side by side, then the tetrahedra beside the rest: each list is
   // built whole by one thread, so the result does not depend on how many run.
-  const auto launch =
-      std::thread::hardware_concurrency() > 1 ? std::launch::async : std::launch::deferred;
-  auto faces_later =
-      std::async(launch, [&] { return Simplices(cells, incident_start, incident, true); });
-  const Simplices edges(cells, incident_start, incident, false);
-  const Simplices faces = faces_later.get();
+  std::optional<Simplices> edge_list, face_list;
+  parallel_invoke([&] { edge_list.emplace(cells, incident_start, incident, false); },
+                  [&] { face_list.emplace(cells, incident_start, incident, true); });
+  const Simplices &edges = *edge_list, &faces = *face_list;
   incident = {};
-  auto tetrahedra_later = std::async(launch, [&] {
+  DelaunayGraph g;
+  const auto tetrahedra = [&] {
     constexpr int kFaces[4][3] = {{0, 1, 2}, {0, 1, 3}, {0, 2, 3}, {1, 2, 3}};
-    std::vector<std::array<int, 4>> tetrahedra;
-    tetrahedra.reserve(cells.size());
+    g.tetrahedra.reserve(cells.size());
     for (const auto& c : cells) {
       std::array<int, 4> t;
       for (int i = 0; i < 4; ++i) {
         const int* f = kFaces[i];
         t[i] = faces.find(c[f[0]], Simplices::pack(c[f[1]], c[f[2]]));  // ascending
       }
-      tetrahedra.push_back(t);
+      g.tetrahedra.push_back(t);
     }
-    return tetrahedra;
-  });
-
-  DelaunayGraph g;
-  g.points = points;
-  g.edges.reserve(edges.size());
-  g.edge_length.reserve(edges.size());
-  for (int a = 0; a < n; ++a)
-    for (int i = edges.first(a); i < edges.end(a); ++i) {
-      const int b = static_cast<int>(edges.rest(i) >> 21);
-      g.edges.push_back({a, b});
-      g.edge_length.push_back((points[a] - points[b]).norm());
-    }
-  // The triangles' edge ids, for two halves of the vertices side by side.
-  auto edge_id = [&](int a, int b) { return edges.find(a, Simplices::pack(b)); };
-  g.triangles.resize(faces.size());
-  const auto triangles_of = [&](int from, int to) {
-    for (int a = from; a < to; ++a)
-      for (int i = faces.first(a); i < faces.end(a); ++i) {
-        const int b = static_cast<int>(faces.rest(i) >> 21);
-        const int c = static_cast<int>(faces.rest(i) & ((1u << 21) - 1));
-        g.triangles[i] = {edge_id(a, b), edge_id(a, c), edge_id(b, c)};  // ascending
-      }
   };
-  int half = 0;
-  while (half < n && faces.first(half) < faces.size() / 2) ++half;
-  auto upper_half = std::async(launch, triangles_of, half, n);
-  triangles_of(0, half);
-  upper_half.get();
-  g.tetrahedra = tetrahedra_later.get();
+  const auto edges_and_triangles = [&] {
+    g.points = points;
+    g.edges.reserve(edges.size());
+    g.edge_length.reserve(edges.size());
+    for (int a = 0; a < n; ++a)
+      for (int i = edges.first(a); i < edges.end(a); ++i) {
+        const int b = static_cast<int>(edges.rest(i) >> 21);
+        g.edges.push_back({a, b});
+        g.edge_length.push_back((points[a] - points[b]).norm());
+      }
+    // The triangles' edge ids, for two halves of the vertices side by side.
+    auto edge_id = [&](int a, int b) { return edges.find(a, Simplices::pack(b)); };
+    g.triangles.resize(faces.size());
+    const auto triangles_of = [&](int from, int to) {
+      for (int a = from; a < to; ++a)
+        for (int i = faces.first(a); i < faces.end(a); ++i) {
+          const int b = static_cast<int>(faces.rest(i) >> 21);
+          const int c = static_cast<int>(faces.rest(i) & ((1u << 21) - 1));
+          g.triangles[i] = {edge_id(a, b), edge_id(a, c), edge_id(b, c)};  // ascending
+        }
+    };
+    int half = 0;
+    while (half < n && faces.first(half) < faces.size() / 2) ++half;
+    parallel_invoke([&] { triangles_of(0, half); }, [&] { triangles_of(half, n); });
+  };
+  parallel_invoke(edges_and_triangles, tetrahedra);
   return g;
 }
 

@@ -2,9 +2,7 @@
 
 #include <algorithm>
 #include <array>
-#include <atomic>
 #include <cstdint>
-#include <future>
 #include <iterator>
 #include <limits>
 #include <memory>
@@ -12,13 +10,11 @@
 #include <queue>
 #include <stdexcept>
 #include <string>
-#include <thread>
 #include <unordered_map>
 #include <utility>
 
 #include "core/input_error.hpp"
 #include "core/parallel.hpp"
-
 #include "perception/counting_sort.hpp"
 #include "perception/homology_graph.hpp"
 
@@ -418,25 +414,15 @@ void shortest_cycles(const SimplicialComplex& complex, const Graph& g, const Wor
   // Roots run on all cores (a Dijkstra each), then merge in root order: only the shortest
   // candidate of each class can enter the basis, so one per class is kept. The result does not
   // depend on the number of threads.
-  const int threads = std::max(
-      1, std::min<int>(options.threads > 0 ? options.threads
-                                           : static_cast<int>(std::thread::hardware_concurrency()),
-                       64));
+  const int threads = std::min(thread_count(options.threads, 64), 64);
   std::vector<std::unique_ptr<Dijkstra>> workers;
   for (int t = 0; t < threads; ++t) workers.push_back(std::make_unique<Dijkstra>(g, W));
-  Dijkstra& dj = *workers[0];
   std::vector<char> rooted(g.n, 0);
   auto collect = [&](const std::vector<int>& roots, double radius) {
     std::vector<Found> found(roots.size());
-    std::atomic<size_t> next{0};
-    auto work = [&](Dijkstra& d) {
-      for (size_t i = next++; i < roots.size(); i = next++) run_root(d, roots[i], radius, found[i]);
-    };
-    std::vector<std::thread> pool;
-    const int used = std::min<int>(threads, static_cast<int>(roots.size()));
-    for (int t = 1; t < used; ++t) pool.emplace_back(work, std::ref(*workers[t]));
-    work(dj);
-    for (auto& t : pool) t.join();
+    parallel_for(roots.size(), threads, [&](std::size_t i, int worker) {
+      run_root(*workers[worker], roots[i], radius, found[i]);
+    });
     for (size_t i = 0; i < roots.size(); ++i) {
       if (!rooted[roots[i]]) ++out.roots, rooted[roots[i]] = 1;
       const Found& f = found[i];
@@ -550,6 +536,7 @@ void shortest_cycles(const SimplicialComplex& complex, const Graph& g, const Wor
 
   // Rebuild each loop: the two tree paths from the root, joined at their last common vertex.
   std::vector<int> mark(g.n, -1);
+  Dijkstra& dj = *workers[0];
   for (size_t idx = 0; idx < kept.size(); ++idx) {
     const Candidate& c = cand[kept[idx]];
     const int u = complex.edges[c.edge][0], w = complex.edges[c.edge][1];
@@ -670,15 +657,14 @@ HomologyBasis persistent_homology_basis(const SimplicialComplex& complex,
     gl = std::make_unique<Graph>(larger);
     big = annotate(larger, *gl, true, std::numeric_limits<int>::max());
   };
-  std::future<void> larger_later;
-  if (options.threads != 1 && std::thread::hardware_concurrency() > 1)
-    larger_later = std::async(std::launch::async, larger_reduction);
-  const Graph g(complex);
-  const Annotation own = annotate(complex, g, false, options.max_beta1);
-  if (larger_later.valid())
-    larger_later.get();
-  else
-    larger_reduction();
+  std::unique_ptr<Graph> own_graph;
+  Annotation own;
+  const auto own_reduction = [&] {
+    own_graph = std::make_unique<Graph>(complex);
+    own = annotate(complex, *own_graph, false, options.max_beta1);
+  };
+  parallel_invoke(own_reduction, larger_reduction, options.threads);
+  const Graph& g = *own_graph;
   HomologyBasis out;
   out.beta1 = own.beta1;
   if (own.beta1 == 0 || big.beta1 == 0) return out;

@@ -9,14 +9,12 @@
 #include "tsrrt/secure_clasp.hpp"
 
 #include <algorithm>
-#include <atomic>
 #include <chrono>
 #include <cmath>
-#include <exception>
 #include <limits>
-#include <thread>
 #include <unordered_map>
 
+#include "core/parallel.hpp"
 #include "robots/kinematics.hpp"
 #include "servo/linking.hpp"
 #include "tsrrt/clasp_scene.hpp"
@@ -319,8 +317,7 @@ SecureClaspReport run_check(const robots::RobotModel& model,
   robots::RobotData data(model);
   robots::forward_kinematics(model, q, data);
 
-  const int cores = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
-  const int threads = std::max(1, std::min(o.threads > 0 ? o.threads : cores, o.sequences));
+  const int threads = thread_count(o.threads, static_cast<std::size_t>(std::max(0, o.sequences)));
   // The robot and the object only, as in the paper's test; the arm does not move.
   std::vector<robots::CollisionWorld> worlds;
   for (int t = 0; t < threads; ++t) {
@@ -341,22 +338,9 @@ SecureClaspReport run_check(const robots::RobotModel& model,
   for (int round = 0; !stop; ++round) {
     const int end = round_end(round, o.motions);
     // Threads take sequences in any order; each sequence's result is its own.
-    std::atomic<int> next{0};
-    std::vector<std::exception_ptr> failures(threads);
-    const auto work = [&](int t) {
-      try {
-        for (int s = next++; s < o.sequences; s = next++)
-          advance(sequences[s], end, worlds[t], data, c, o);
-      } catch (...) {
-        failures[t] = std::current_exception();
-      }
-    };
-    std::vector<std::thread> pool;
-    for (int t = 1; t < threads; ++t) pool.emplace_back(work, t);
-    work(0);
-    for (auto& th : pool) th.join();
-    for (const auto& f : failures)
-      if (f) std::rethrow_exception(f);
+    parallel_for(sequences.size(), threads, [&](std::size_t s, int worker) {
+      advance(sequences[s], end, worlds[worker], data, c, o);
+    });
     if (rounds_done) *rounds_done = round + 1;
     for (const Sequence& s : sequences) {
       report.timed_out |= s.timed_out;
