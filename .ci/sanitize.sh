@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # CI: tests built with AddressSanitizer and UndefinedBehaviorSanitizer (g++), in their own build
 # folder (build-asan). Any sanitizer report aborts the test that triggered it.
-#   .ci/sanitize.sh        the four libraries' unit tests (test_perception, test_robots,
+#   .ci/sanitize.sh        the five libraries' unit tests (test_core, test_perception, test_robots,
 #                          test_servo, test_tsrrt: every library's code, the planner with the
 #                          real robots and objects among it); measured cold on two cores: 11 min
 #                          to build, 6 min to test (while another build shared the machine)
@@ -18,7 +18,7 @@ export ASAN_OPTIONS=detect_leaks=1:abort_on_error=1:strict_string_checks=1
 export UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1
 export LSAN_OPTIONS="suppressions=$PWD/.ci/lsan.supp"  # leaks inside Debian libraries, explained
 if [ "$mode" = "libraries" ]; then
-  cmake --build build-asan -j2 --target test_perception test_robots test_servo test_tsrrt
+  cmake --build build-asan -j2 --target test_core test_perception test_robots test_servo test_tsrrt
   echo "sanitize: built in ${SECONDS} s"
   # Only those binaries' tests: the others (command line, package, API example) are not built.
   ctest --test-dir build-asan --output-on-failure -j2 \

@@ -3,8 +3,9 @@
 #include <cstring>
 #include <stdexcept>
 
-#include "core/input_error.hpp"
 #include <png.h>
+
+#include "core/input_error.hpp"
 
 namespace claspplan {
 namespace {

@@ -12,9 +12,10 @@
 #include <utility>
 #include <vector>
 
-#include "core/input_error.hpp"
 #include <Eigen/Core>
 #include <yaml-cpp/yaml.h>
+
+#include "core/input_error.hpp"
 
 namespace claspplan {
 

@@ -8,12 +8,13 @@
 #include <sstream>
 #include <stdexcept>
 
+#include <Eigen/SVD>
+#include <opencv2/core.hpp>
+
 #include "core/file_io_detail.hpp"
 #include "core/input_error.hpp"
 #include "core/png_files.hpp"
 #include "core/yaml_field.hpp"
-#include <Eigen/SVD>
-#include <opencv2/core.hpp>
 
 namespace claspplan::perception {
 

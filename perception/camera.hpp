@@ -17,9 +17,10 @@
 #include <string>
 #include <vector>
 
-#include "core/input_error.hpp"
 #include <Eigen/Core>
 #include <Eigen/Geometry>
+
+#include "core/input_error.hpp"
 
 namespace claspplan::perception {
 

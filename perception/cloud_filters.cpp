@@ -8,14 +8,14 @@
 #include <stdexcept>
 #include <thread>
 
-#include "core/parallel.hpp"
-#include "core/random_draws.hpp"
 #include <pcl/point_cloud.h>
 #include <pcl/point_types.h>
 #include <pcl/sample_consensus/method_types.h>
 #include <pcl/sample_consensus/model_types.h>
 #include <pcl/segmentation/sac_segmentation.h>
 
+#include "core/parallel.hpp"
+#include "core/random_draws.hpp"
 #include "perception/first_occurrences.hpp"
 #include "perception/point_index.hpp"
 

@@ -5,8 +5,9 @@
 #include <cstdint>
 #include <limits>
 
-#include "core/mesh.hpp"
 #include <Eigen/Geometry>
+
+#include "core/mesh.hpp"
 
 namespace claspplan::perception {
 

@@ -4,7 +4,6 @@
 #include <stdexcept>
 
 #include "core/input_error.hpp"
-
 #include "perception/cloud_filters.hpp"
 
 namespace claspplan::perception {

@@ -5,7 +5,6 @@
 #include <cstdint>
 
 #include "core/mesh.hpp"
-
 #include "perception/camera.hpp"
 
 namespace claspplan::perception {

@@ -30,10 +30,10 @@
 #include <optional>
 #include <vector>
 
-#include "core/mesh.hpp"
 #include <Eigen/Core>
 #include <Eigen/Geometry>
 
+#include "core/mesh.hpp"
 #include "perception/camera.hpp"
 
 namespace claspplan::perception {

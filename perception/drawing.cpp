@@ -6,9 +6,10 @@
 #include <numeric>
 #include <stdexcept>
 
-#include "core/png_files.hpp"
 #include <opencv2/core.hpp>
 #include <opencv2/imgproc.hpp>
+
+#include "core/png_files.hpp"
 
 namespace claspplan::perception {
 

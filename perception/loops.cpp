@@ -9,6 +9,7 @@
 
 #include <Eigen/Eigenvalues>
 
+#include "core/polygon.hpp"
 #include "perception/point_index.hpp"
 #include "perception/sensed_space.hpp"
 
@@ -27,19 +28,6 @@ std::string centimetres(double v) {
   char buf[32];
   std::snprintf(buf, sizeof buf, "%g cm", std::round(1000.0 * v) / 10.0);
   return buf;
-}
-
-// Even-odd point-in-polygon test in the plane.
-bool inside(const std::vector<Eigen::Vector2d>& poly, const Eigen::Vector2d& q) {
-  bool in = false;
-  for (size_t i = 0, j = poly.size() - 1; i < poly.size(); j = i++) {
-    const auto& a = poly[i];
-    const auto& b = poly[j];
-    if ((a.y() > q.y()) != (b.y() > q.y()) &&
-        q.x() < (b.x() - a.x()) * (q.y() - a.y()) / (b.y() - a.y()) + a.x())
-      in = !in;
-  }
-  return in;
 }
 
 enum class Seen { kUnknown, kFree, kBlocked };
@@ -211,7 +199,7 @@ void measure_bar(Loop& loop, const PointIndex& index, const std::vector<DepthVie
   // The places: kBarSamples points equally spaced by arc length, with their tangents.
   for (const auto& place : clasp_targets(loop.points, kBarSamples)) {
     const double b =
-        bar_at(index, views, o.support_plane, place.p, place.tangent, link, cap, finger);
+        bar_at(index, views, o.support_plane, place.point, place.tangent, link, cap, finger);
     loop.bar_profile.push_back(b);
     if (b > 0) measured.push_back(b);
   }
@@ -339,7 +327,7 @@ void assess(Loop& loop, const PointIndex& index, const Eigen::AlignedBox3d& boun
   double best = 0.0;
   for (double x = box.min().x() + step / 2; x < box.max().x(); x += step) {
     for (double y = box.min().y() + step / 2; y < box.max().y(); y += step) {
-      if (!inside(poly, {x, y})) continue;
+      if (!inside_polygon(poly, {x, y})) continue;
       const Eigen::Vector3d q = c + x * e1 + y * e2;
       const double cl = index.nearest(q).second;
       samples.push_back(q);

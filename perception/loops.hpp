@@ -44,7 +44,7 @@
 #include <vector>
 
 #include "core/mesh.hpp"
-
+#include "core/clasp_target.hpp"
 #include "perception/camera.hpp"
 #include "perception/sensed_space.hpp"
 
@@ -143,12 +143,6 @@ void assess_loop(Loop& loop, const PointCloud& cloud, const std::vector<DepthVie
 /// assess_loop() for each loop, then sorts (order above) and numbers the ranks from 1.
 void rank_loops(std::vector<Loop>& loops, const PointCloud& cloud,
                 const std::vector<DepthView>& views, const RankingOptions& options);
-
-/// A clasp target: a point on the loop and the loop's unit tangent there.
-struct ClaspTarget {
-  Eigen::Vector3d p;
-  Eigen::Vector3d tangent;
-};
 
 /// `k` points equally spaced by arc length along the closed polyline, starting at its first point
 /// and following its order; each tangent is the unit chord between the points half a target

@@ -10,7 +10,6 @@
 #include "core/file_io.hpp"
 #include "core/input_error.hpp"
 #include "core/parallel.hpp"
-
 #include "perception/cloud_filters.hpp"
 #include "perception/depth_render.hpp"
 #include "perception/sensor_cloud.hpp"

@@ -33,7 +33,6 @@
 
 #include "core/input_error.hpp"
 #include "core/mesh.hpp"
-
 #include "perception/camera.hpp"
 #include "perception/complex.hpp"
 #include "perception/homology.hpp"

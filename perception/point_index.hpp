@@ -5,8 +5,9 @@
 #include <utility>
 #include <vector>
 
-#include "core/mesh.hpp"
 #include <nanoflann.hpp>
+
+#include "core/mesh.hpp"
 
 namespace claspplan::perception {
 

@@ -11,9 +11,9 @@
 #include <optional>
 #include <string>
 
-#include "core/mesh.hpp"
 #include <Eigen/Geometry>
 
+#include "core/mesh.hpp"
 #include "perception/camera.hpp"
 
 namespace claspplan::perception {

@@ -9,7 +9,6 @@
 #include <vector>
 
 #include "core/yaml_field.hpp"
-
 #include "robots/robot_model_detail.hpp"
 
 namespace claspplan::robots::robot_model_detail {

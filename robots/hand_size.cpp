@@ -7,6 +7,7 @@
 
 #include <Eigen/Eigenvalues>
 
+#include "core/polygon.hpp"
 #include "robots/kinematics.hpp"
 
 namespace claspplan::robots {
@@ -40,25 +41,6 @@ double cord_ratio(const std::vector<Eigen::Vector3d>& c) {
   return total > 0 ? 1.0 - (c.back() - c.front()).norm() / total : 0.0;
 }
 
-double segment_distance(const Eigen::Vector2d& p, const Eigen::Vector2d& a,
-                        const Eigen::Vector2d& b) {
-  const Eigen::Vector2d ab = b - a;
-  const double t = std::clamp((p - a).dot(ab) / std::max(ab.squaredNorm(), 1e-300), 0.0, 1.0);
-  return (a + t * ab - p).norm();
-}
-
-bool inside(const std::vector<Eigen::Vector2d>& poly, const Eigen::Vector2d& q) {
-  bool in = false;
-  for (std::size_t i = 0, j = poly.size() - 1; i < poly.size(); j = i++) {
-    const auto& a = poly[i];
-    const auto& b = poly[j];
-    if ((a.y() > q.y()) != (b.y() > q.y()) &&
-        q.x() < (b.x() - a.x()) * (q.y() - a.y()) / (b.y() - a.y()) + a.x())
-      in = !in;
-  }
-  return in;
-}
-
 // Diameter of the largest circle inside the closed curve, in its least-squares plane.
 double inscribed_diameter(const std::vector<Eigen::Vector3d>& c) {
   Eigen::Vector3d mean = Eigen::Vector3d::Zero();
@@ -79,7 +61,7 @@ double inscribed_diameter(const std::vector<Eigen::Vector3d>& c) {
   for (double x = box.min().x(); x <= box.max().x(); x += step) {
     for (double y = box.min().y(); y <= box.max().y(); y += step) {
       const Eigen::Vector2d q(x, y);
-      if (!inside(poly, q)) continue;
+      if (!inside_polygon(poly, q)) continue;
       double d = std::numeric_limits<double>::infinity();
       for (std::size_t i = 0; i < poly.size(); ++i)
         d = std::min(d, segment_distance(q, poly[i], poly[(i + 1) % poly.size()]));

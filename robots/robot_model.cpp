@@ -10,7 +10,6 @@
 #include <stdexcept>
 
 #include "core/input_error.hpp"
-
 #include "robots/embedded_models.hpp"
 #include "robots/robot_model_detail.hpp"
 

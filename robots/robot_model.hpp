@@ -15,9 +15,10 @@
 #include <utility>
 #include <vector>
 
-#include "core/input_error.hpp"
 #include <Eigen/Core>
 #include <Eigen/Geometry>
+
+#include "core/input_error.hpp"
 
 namespace claspplan::robots {
 

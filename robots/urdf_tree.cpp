@@ -3,9 +3,9 @@
 #include <mutex>
 #include <vector>
 
-#include "core/input_error.hpp"
 #include <console_bridge/console.h>
 
+#include "core/input_error.hpp"
 #include "robots/robot_model_detail.hpp"
 
 namespace claspplan::robots::robot_model_detail {

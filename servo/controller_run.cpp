@@ -3,7 +3,8 @@
 namespace claspplan::servo {
 
 ControllerRun run_controller(ClaspController& controller, robots::CollisionWorld& world,
-                             const Eigen::VectorXd& q_start, const ControllerRunOptions& o) {
+                             const Eigen::VectorXd& q_start, double goal_linking,
+                             const ControllerRunOptions& o) {
   ControllerRun run;
   Eigen::VectorXd q = q_start;
   run.waypoints.push_back(q);
@@ -24,7 +25,7 @@ ControllerRun run_controller(ClaspController& controller, robots::CollisionWorld
   double best_linking = x.linking;
   int stalled = 0;
   for (int step = 0; step < o.max_steps; ++step) {
-    if (x.linking >= o.goal_linking) {
+    if (x.linking >= goal_linking) {
       run.success = true;
       run.reason = "virtual-linking goal reached";
       break;

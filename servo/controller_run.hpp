@@ -14,7 +14,6 @@
 namespace claspplan::servo {
 
 struct ControllerRunOptions {
-  double goal_linking = 0.85;  ///< success once Π_vlink reaches this (the hand's default goal)
   int max_steps = 2000;
   /// Progress stops when, for this many steps, the hand got no closer to the target, the
   /// alignment error did not shrink and the linking did not grow by the amounts below.
@@ -36,7 +35,9 @@ struct ControllerRun {
   std::vector<double> linking_history;  ///< Π_vlink after every step (the start included)
 };
 
+/// Success once Π_vlink (eq. 4) reaches goal_linking (the hand's: RobotModel::vlink_goal).
 ControllerRun run_controller(ClaspController& controller, robots::CollisionWorld& world,
-                             const Eigen::VectorXd& q_start, const ControllerRunOptions& options);
+                             const Eigen::VectorXd& q_start, double goal_linking,
+                             const ControllerRunOptions& options);
 
 }  // namespace claspplan::servo

@@ -9,6 +9,7 @@
 #include <Eigen/Core>
 #include <visp3/visual_features/vpBasicFeature.h>
 
+#include "core/clasp_target.hpp"
 #include "servo/hand_kinematics.hpp"
 
 namespace claspplan::servo {
@@ -51,12 +52,6 @@ class PositionFeature final : public JointSpaceFeature {
   void update(const HandKinematics& hand);
   Eigen::Vector3d position() const { return {s[0], s[1], s[2]}; }
   vpBasicFeature* duplicate() const override { return new PositionFeature(*this); }
-};
-
-/// A clasp target on a loop: a point p and the loop's unit tangent p' there.
-struct ClaspTarget {
-  Eigen::Vector3d point;
-  Eigen::Vector3d tangent;
 };
 
 /// Π_align (eq. 3): (|v_swd · p'_near|, v_fwd · t_near) for the clasp target nearest to the hand

@@ -23,10 +23,8 @@ servo::Points upright_loop(double radius, double height) {
   return loop;
 }
 
-std::vector<servo::ClaspTarget> targets_on(const servo::Points& loop) {
-  std::vector<servo::ClaspTarget> out;
-  for (const auto& t : perception::clasp_targets(loop, 12)) out.push_back({t.p, t.tangent});
-  return out;
+std::vector<ClaspTarget> targets_on(const servo::Points& loop) {
+  return perception::clasp_targets(loop, 12);
 }
 
 // The floor's top at z = 0.
