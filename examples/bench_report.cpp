@@ -11,10 +11,10 @@
 #include <sstream>
 #include <stdexcept>
 
-#include "core/input_error.hpp"
-#include "core/png_files.hpp"
 #include <opencv2/imgproc.hpp>
 
+#include "core/input_error.hpp"
+#include "core/png_files.hpp"
 #include "examples/bench_suite.hpp"
 
 namespace claspplan::cli {

@@ -5,7 +5,6 @@
 #include <iostream>
 
 #include "core/input_error.hpp"
-
 #include "examples/command.hpp"
 #include "examples/curve_file.hpp"
 #include "servo/linking.hpp"

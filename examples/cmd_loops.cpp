@@ -9,7 +9,6 @@
 #include <sstream>
 
 #include "core/input_error.hpp"
-
 #include "examples/command.hpp"
 #include "examples/objects.hpp"
 #include "perception/drawing.hpp"
@@ -128,7 +127,7 @@ int run_loops(const LoopsOptions& o) {
     }
     nlohmann::json targets = nlohmann::json::array();
     for (const auto& t : model.targets)
-      targets.push_back({{"p", vec(t.p)}, {"tangent", vec(t.tangent)}});
+      targets.push_back({{"p", vec(t.point)}, {"tangent", vec(t.tangent)}});
     const auto& tm = model.timings;
     nlohmann::json out = {{"beta1", model.beta1},
                           {"stable_loops", static_cast<int>(model.loops.size())},

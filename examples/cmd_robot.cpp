@@ -7,7 +7,6 @@
 #include <sstream>
 
 #include "core/input_error.hpp"
-
 #include "examples/command.hpp"
 #include "robots/collision_world.hpp"
 #include "robots/kinematics.hpp"

@@ -6,7 +6,6 @@
 #include <string>
 
 #include "core/input_error.hpp"
-
 #include "servo/linking.hpp"
 
 namespace claspplan::cli {

@@ -4,9 +4,9 @@
 #include <chrono>
 #include <random>
 
-#include "core/random_draws.hpp"
 #include <Eigen/Cholesky>
 
+#include "core/random_draws.hpp"
 #include "robots/kinematics.hpp"
 #include "tsrrt/elapsed.hpp"
 
@@ -65,7 +65,7 @@ class GraspRrt {
     }
     r_.statistics.cycles = iterations;
     r_.statistics.nodes = static_cast<int>(nodes_.size());
-    if (!r_.success) {
+    if (!r_.succeeded()) {
       r_.reason = "Grasp-RRT baseline: no grasp scored in " + std::to_string(iterations) +
                   " iterations (" + std::to_string(approaches) + " approaches, " +
                   std::to_string(contacts) + " reached the object, " +
@@ -180,7 +180,7 @@ class GraspRrt {
       }
     }
     if (touching < o_.min_contact_fingers || (has_thumb && !thumb)) return false;
-    r_.success = true;
+    r_.status = tsrrt::ClaspStatus::kSuccess;
     for (int i = node; i >= 0; i = nodes_[i].parent) r_.motion.waypoints.push_back(nodes_[i].q);
     std::reverse(r_.motion.waypoints.begin(), r_.motion.waypoints.end());
     r_.motion.waypoints.push_back(q);

@@ -15,11 +15,11 @@
 #include <string>
 #include <vector>
 
-#include "core/input_error.hpp"
-#include "core/mesh.hpp"
 #include <Eigen/Core>
 #include <Eigen/Geometry>
 
+#include "core/input_error.hpp"
+#include "core/mesh.hpp"
 #include "perception/camera.hpp"
 #include "perception/depth_render.hpp"
 

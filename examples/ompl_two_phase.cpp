@@ -5,7 +5,6 @@
 #include <memory>
 #include <random>
 
-#include "core/random_draws.hpp"
 #include <ompl/base/PlannerData.h>
 #include <ompl/base/ProblemDefinition.h>
 #include <ompl/base/SpaceInformation.h>
@@ -16,6 +15,7 @@
 #include <ompl/geometric/planners/rrt/RRTConnect.h>
 #include <ompl/util/Console.h>
 
+#include "core/random_draws.hpp"
 #include "tsrrt/elapsed.hpp"
 
 namespace claspplan::cli {
@@ -71,7 +71,7 @@ void ompl_two_phase(const tsrrt::ClaspScene& scene, tsrrt::ClaspResult& r,
 
   // Phase 1: the controller alone from sampled arm configurations (the hand as at the start).
   servo::ControllerRunOptions run;
-  run.goal_linking = tsrrt::closable_tolerance(scene.planning, scene.goal_linking);
+  const double reach_linking = tsrrt::closable_tolerance(scene.planning, scene.goal_linking);
   run.max_steps = o.controller_steps;
   run.collision_resolution = scene.planning.collision_resolution;
   std::vector<Goal> goals;
@@ -84,7 +84,8 @@ void ompl_two_phase(const tsrrt::ClaspScene& scene, tsrrt::ClaspResult& r,
       q[j] = lower[j] + uniform01(rng()) * (upper[j] - lower[j]);
     ++starts;
     if (scene.world.in_collision(q)) continue;
-    const servo::ControllerRun reach = servo::run_controller(scene.controller, scene.world, q, run);
+    const servo::ControllerRun reach =
+        servo::run_controller(scene.controller, scene.world, q, reach_linking, run);
     r.statistics.control_steps += static_cast<int>(reach.waypoints.size()) - 1;
     if (!reach.success) continue;
     ++reached;
@@ -168,7 +169,8 @@ void ompl_two_phase(const tsrrt::ClaspScene& scene, tsrrt::ClaspResult& r,
   r.motion.waypoints.push_back(goals[best].q_closed);
   r.verification = goals[best].check;
   r.motion.target = goals[best].target;
-  r.success = r.verified = true;
+  r.verified = true;
+  r.status = tsrrt::ClaspStatus::kSuccess;
   r.reason = "verified clasp";
 }
 

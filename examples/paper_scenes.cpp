@@ -6,9 +6,9 @@
 #include <fstream>
 #include <stdexcept>
 
-#include "core/file_io.hpp"
 #include <nlohmann/json.hpp>
 
+#include "core/file_io.hpp"
 #include "examples/scenario.hpp"
 #include "perception/depth_render.hpp"
 #include "perception/sensed_space.hpp"

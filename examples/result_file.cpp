@@ -4,8 +4,9 @@
 #include <fstream>
 #include <stdexcept>
 
-#include "core/input_error.hpp"
 #include <nlohmann/json.hpp>
+
+#include "core/input_error.hpp"
 
 namespace claspplan::cli {
 namespace {

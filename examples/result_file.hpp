@@ -9,9 +9,9 @@
 #include <string>
 #include <vector>
 
-#include "core/input_error.hpp"
 #include <Eigen/Core>
 
+#include "core/input_error.hpp"
 #include "robots/robot_model.hpp"
 #include "servo/linking.hpp"
 #include "tsrrt/clasp_setup.hpp"

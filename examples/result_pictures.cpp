@@ -1,8 +1,8 @@
 #include "examples/result_pictures.hpp"
 
-#include "core/png_files.hpp"
 #include <Eigen/Geometry>
 
+#include "core/png_files.hpp"
 #include "robots/kinematics.hpp"
 
 namespace claspplan::cli {

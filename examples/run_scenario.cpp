@@ -84,7 +84,7 @@ tsrrt::ClaspRequest clasp_request(const Scenario& s, const RunOptions& options,
   request.object = std::move(inputs);
   request.environment = s.boxes;
   request.loop_hint = s.loop_hint;
-  request.targets = s.targets;
+  request.goal_linking = s.goal_linking;
   request.perception = s.perception;
   request.controller = s.controller;
   request.controller_run = s.controller_run;
@@ -107,7 +107,7 @@ json controller_json(const tsrrt::ClaspResult& r, json& result, json& timing) {
   result["collided"] = st.collided;
   result["target"] = r.motion.target;
   result["linking_history"] = st.linking_history;
-  return {{"success", r.success},
+  return {{"success", r.succeeded()},
           {"reason", r.reason},
           {"steps", st.control_steps},
           {"collided", st.collided},
@@ -248,7 +248,7 @@ RunOutcome run_scenario(const Scenario& scenario, const RunOptions& options) {
   json& waypoints = result["waypoints"] = json::array();
   for (const auto& q : path) waypoints.push_back(to_json(q));
   result["final_q"] = to_json(r.motion.final_q);
-  result["success"] = r.success;
+  result["success"] = r.succeeded();
   if (!options.controller_only) result["verified"] = r.verified;
   result["virtual_linking"] = r.final_state.virtual_linking;
   result["finger_virtual_linking"] = r.final_state.finger_virtual_linking;
@@ -265,7 +265,7 @@ RunOutcome run_scenario(const Scenario& scenario, const RunOptions& options) {
     write_path_poses(scene, path, options.out_dir + "/poses.png");
     timing["pictures"] = since(tp);
   }
-  return finish(r.success ? kOk : kNoAnswer, summary);
+  return finish(r.succeeded() ? kOk : kNoAnswer, summary);
 }
 
 json verification_json(const tsrrt::SecureClaspReport& v) {

@@ -7,9 +7,9 @@
 #include <optional>
 #include <string>
 
-#include "core/input_error.hpp"
 #include <nlohmann/json.hpp>
 
+#include "core/input_error.hpp"
 #include "examples/scenario.hpp"
 
 namespace claspplan::cli {

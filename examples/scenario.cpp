@@ -9,7 +9,6 @@
 #include "core/file_io.hpp"
 #include "core/input_error.hpp"
 #include "core/yaml_field.hpp"
-
 #include "examples/objects.hpp"
 #include "examples/paper_objects.hpp"
 #include "examples/scene_render.hpp"
@@ -303,7 +302,7 @@ Scenario read_scenario(const YamlField& root, const std::string& path,
   const Reader clasp = r.child("clasp");
   clasp.only({"near", "targets"});
   if (clasp.has("near")) s.loop_hint = clasp.vector3("near", Eigen::Vector3d::Zero());
-  s.targets = clasp.integer("targets", s.targets, 1, 200);
+  s.perception.targets = clasp.integer("targets", s.perception.targets, 1, 200);
 
   const Reader per = r.child("perception");
   per.only({"points", "d", "d_factor", "min_hole", "seed", "workspace", "remove_plane"});
@@ -314,7 +313,6 @@ Scenario read_scenario(const YamlField& root, const std::string& path,
   po.min_hole = per.number("min_hole", po.min_hole, 0.0, 10.0);
   po.seed =
       static_cast<std::uint64_t>(per.integer("seed", static_cast<int>(s.seed), 0, 2147483647));
-  po.targets = s.targets;
   po.remove_plane = per.boolean("remove_plane", po.remove_plane);
   if (per.has("workspace")) {
     const Reader w = per.child("workspace");
@@ -397,7 +395,7 @@ Scenario read_scenario(const YamlField& root, const std::string& path,
     }
   }
   tp.seed = s.seed;
-  o.goal_linking = pl.number("goal_linking", o.goal_linking, 0.0, 1.0);
+  if (pl.has("goal_linking")) s.goal_linking = pl.number("goal_linking", 0.0, 1e-6, 1.0);
   o.closable_linking = pl.number("closable_linking", o.closable_linking, 0.0, 1.0);
   o.position_tolerance = pl.number("position_tolerance", o.position_tolerance, 0.0, 10.0);
   o.collision_resolution = pl.number("collision_resolution", o.collision_resolution, 1e-4, 1.0);

@@ -9,9 +9,9 @@
 #include <string>
 #include <vector>
 
-#include "core/input_error.hpp"
 #include <Eigen/Geometry>
 
+#include "core/input_error.hpp"
 #include "examples/objects.hpp"
 #include "perception/depth_render.hpp"
 #include "perception/pipeline.hpp"
@@ -63,12 +63,12 @@ struct Scenario {
   ObjectSpec object;
   std::vector<EnvironmentBox> boxes;
   std::optional<Eigen::Vector3d> loop_hint;  ///< clasp the claspable loop nearest this point
-  int targets = 12;                          ///< clasp targets on the loop
   std::uint64_t seed = 1;
   perception::PerceptionOptions perception;
   servo::ControllerParameters controller;
   servo::ControllerRunOptions controller_run;
   tsrrt::ClaspPlanningOptions planning;
+  std::optional<double> goal_linking;  ///< planner.goal_linking; none: the robot's own
 };
 
 /// The secure-clasp check's budget: sequences x motions at most this many motions (20 times the

@@ -5,9 +5,10 @@
 #include <limits>
 #include <stdexcept>
 
-#include "core/png_files.hpp"
 #include <Eigen/Geometry>
 #include <opencv2/imgproc.hpp>
+
+#include "core/png_files.hpp"
 
 namespace claspplan::cli {
 namespace {

@@ -60,7 +60,7 @@ ControllerRun run_controller(ClaspController& controller, robots::CollisionWorld
     }
   }
   if (!run.success && run.reason.empty()) {
-    run.success = x.linking >= o.goal_linking;
+    run.success = x.linking >= goal_linking;
     run.reason = run.success ? "virtual-linking goal reached"
                              : "step limit of " + std::to_string(o.max_steps) + " reached";
   }

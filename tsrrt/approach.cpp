@@ -8,7 +8,7 @@
 
 namespace claspplan::tsrrt {
 
-ApproachFrame approach_frame(const servo::Points& loop, const servo::ClaspTarget& target) {
+ApproachFrame approach_frame(const servo::Points& loop, const ClaspTarget& target) {
   // The loop's centroid, weighting each point by its two half segments (uneven sampling).
   Eigen::Vector3d centre = Eigen::Vector3d::Zero();
   double total = 0.0;
@@ -33,8 +33,8 @@ std::vector<Eigen::Vector2d> approach_angles() {
   return {{1, 0}, {0, 1}, {0, -1}, {s, s}, {s, -s}};
 }
 
-std::vector<Eigen::Vector3d> clasp_approaches(const servo::Points& loop,
-                                              const servo::ClaspTarget& target, double distance) {
+std::vector<Eigen::Vector3d> clasp_approaches(const servo::Points& loop, const ClaspTarget& target,
+                                              double distance) {
   const ApproachFrame frame = approach_frame(loop, target);
   std::vector<Eigen::Vector3d> points;
   for (const auto& angle : approach_angles())

@@ -22,7 +22,7 @@ struct ApproachFrame {
     return angle.x() * r + angle.y() * n;
   }
 };
-ApproachFrame approach_frame(const servo::Points& loop, const servo::ClaspTarget& target);
+ApproachFrame approach_frame(const servo::Points& loop, const ClaspTarget& target);
 
 /// The approach angles θ, each as (cos θ, sin θ): 0, +90°, −90°, +45°, −45°, in that order.
 std::vector<Eigen::Vector2d> approach_angles();
@@ -30,8 +30,8 @@ std::vector<Eigen::Vector2d> approach_angles();
 /// Where to approach clasp target `target` of `loop` from: the points p + distance·direction(θ)
 /// of its approach_frame() for θ in approach_angles(): from outside the loop and from both sides
 /// of its plane, never from inside the hole.
-std::vector<Eigen::Vector3d> clasp_approaches(const servo::Points& loop,
-                                              const servo::ClaspTarget& target, double distance);
+std::vector<Eigen::Vector3d> clasp_approaches(const servo::Points& loop, const ClaspTarget& target,
+                                              double distance);
 
 struct ApproachOptions {
   double step = 0.004;     ///< m per step along the approach direction

@@ -4,7 +4,6 @@
 #include <cmath>
 
 #include "core/random_draws.hpp"
-
 #include "robots/kinematics.hpp"
 #include "tsrrt/approach.hpp"
 

@@ -7,7 +7,6 @@
 #include <stdexcept>
 
 #include "core/input_error.hpp"
-
 #include "perception/depth_surface.hpp"
 #include "tsrrt/clasp_setup.hpp"
 #include "tsrrt/elapsed.hpp"

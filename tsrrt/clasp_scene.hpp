@@ -51,14 +51,11 @@ void object_collision_mesh(const perception::ObjectModel& object, const percepti
 struct ClaspPlanningOptions {
   PlannerParameters planner;
   bool sample_box_given = false;  ///< else the box is fitted around object and hand
-  /// The hand's virtual-linking goal (mean |VLk|, eq. 4): what the controller drives toward; 0:
-  /// the hand's default goal.
-  double goal_linking = 0.0;
   /// The tree's goal tolerance: a node at this mean |VLk| is a closable pose, where the fingers
   /// close until contact (paper Sec. V: 0.65 is the lowest threshold it uses for every hand). A
   /// closed hand that no longer links at it (closed_hand_links: one of three or more fingers may
   /// miss) is refused without the (costly) secure-clasp check. 0: the tree must reach
-  /// goal_linking itself.
+  /// the hand's linking goal itself (ClaspRequest::goal_linking).
   double closable_linking = 0.65;
   double position_tolerance = 0.0;     ///< metres; 0: virtual linking only (as in the paper)
   double collision_resolution = 0.02;  ///< rad between checked configurations

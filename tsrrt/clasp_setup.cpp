@@ -9,7 +9,6 @@
 
 #include "core/input_error.hpp"
 #include "core/mesh.hpp"
-
 #include "robots/kinematics.hpp"
 #include "tsrrt/clasp_problem.hpp"
 #include "tsrrt/clasp_scene.hpp"
@@ -35,16 +34,15 @@ void fit_sample_box(PlannerParameters& p, const perception::ObjectModel& object,
 void run_controller_only(const ClaspRequest& request, servo::ClaspController& controller,
                          robots::CollisionWorld& world, double goal_linking, ClaspResult& r) {
   const auto t = Clock::now();
-  servo::ControllerRunOptions options = request.controller_run;
-  options.goal_linking = goal_linking;
-  servo::ControllerRun run = servo::run_controller(controller, world, r.start, options);
+  servo::ControllerRun run =
+      servo::run_controller(controller, world, r.start, goal_linking, request.controller_run);
   r.timings.controller = since(t);
   r.statistics.control_steps = static_cast<int>(run.waypoints.size()) - 1;
   r.statistics.collided = run.collided;
   r.statistics.linking_history = std::move(run.linking_history);
   r.motion.target = run.target;
   r.motion.waypoints = std::move(run.waypoints);
-  r.success = run.success;
+  if (run.success) r.status = ClaspStatus::kSuccess;
   r.reason = run.reason;
 }
 
@@ -121,7 +119,8 @@ void run_search(const ClaspScene& scene, const Say& say, ClaspResult& r) {
   r.timings.pruning = since(t);
   for (const auto& q : last.approach) r.motion.waypoints.push_back(q);
   if (last.q_closed != r.motion.waypoints.back()) r.motion.waypoints.push_back(last.q_closed);
-  r.success = r.verified = check.secure;
+  r.verified = check.secure;
+  if (check.secure) r.status = ClaspStatus::kSuccess;
   r.reason =
       check.secure ? "verified clasp" : "the clasp failed verification: " + insecure_reason(check);
 }
@@ -176,9 +175,8 @@ int choose_loop_with_room(const robots::RobotModel& model, const ClaspRequest& r
   for (int chosen = choose_loop(r.object, request.loop_hint); chosen >= 0;
        chosen = choose_loop(r.object, request.loop_hint)) {
     perception::Loop& loop = r.object.loops[chosen];
-    std::vector<servo::ClaspTarget> targets;
-    for (const auto& g : perception::clasp_targets(loop, request.targets, r.hand.closed_aperture))
-      targets.push_back({g.p, g.tangent});
+    std::vector<ClaspTarget> targets =
+        perception::clasp_targets(loop, request.perception.targets, r.hand.closed_aperture);
     if (r.environment.empty()) {
       r.targets = std::move(targets);
       return chosen;
@@ -216,6 +214,8 @@ int choose_loop_with_room(const robots::RobotModel& model, const ClaspRequest& r
 ClaspResult plan_clasp(const ClaspRequest& request) {
   const std::string prefix = request.name.empty() ? "" : request.name + ": ";
   if (!request.robot) throw InputError(prefix + "the request has no robot");
+  if (request.goal_linking && !(*request.goal_linking > 0.0 && *request.goal_linking <= 1.0))
+    throw InputError(prefix + "goal_linking must be in (0, 1]");
   const robots::RobotModel& model = *request.robot;
   const Say say = [&](const std::string& m) {
     if (request.progress) request.progress(m);
@@ -295,8 +295,7 @@ ClaspResult plan_clasp(const ClaspRequest& request) {
   r.timings.scene = since(t);
 
   servo::ClaspController controller(model, loop.points, r.targets, request.controller);
-  const double goal_linking =
-      planning.goal_linking > 0.0 ? planning.goal_linking : model.vlink_goal;
+  const double goal_linking = request.goal_linking.value_or(model.vlink_goal);
   if (request.mode == ClaspMode::kControllerOnly) {
     say("running the controller alone toward the nearest clasp target ...");
     run_controller_only(request, controller, world, goal_linking, r);
@@ -319,7 +318,6 @@ ClaspResult plan_clasp(const ClaspRequest& request) {
     r.timings.search = since(t0);
     r.timings.planning = r.timings.search - r.timings.closing - r.timings.verification;
   }
-  r.status = r.success ? ClaspStatus::kSuccess : ClaspStatus::kNoClasp;
   if (r.motion.waypoints.empty()) return r;
 
   // The final pose: virtual linking (eq. 4) and the open curves' Gauss integrals (Fig. 6).

@@ -22,9 +22,9 @@
 #include <string>
 #include <vector>
 
-#include "core/input_error.hpp"
 #include <Eigen/Geometry>
 
+#include "core/input_error.hpp"
 #include "perception/pipeline.hpp"
 #include "robots/collision_world.hpp"
 #include "robots/hand_size.hpp"
@@ -50,8 +50,8 @@ enum class ClaspMode {
 struct ClaspResult;
 
 /// A search in place of TS-RRT: from result.start, fills result.motion.waypoints (start to the
-/// closed hand), success, verified, reason, verification, statistics, and timings.closing and
-/// timings.verification (plan_clasp times the whole search).
+/// closed hand), status (kSuccess when it found one), verified, reason, verification, statistics,
+/// and timings.closing and timings.verification (plan_clasp times the whole search).
 using ClaspSearch = std::function<void(const ClaspScene&, ClaspResult&)>;
 
 struct ClaspRequest {
@@ -65,13 +65,16 @@ struct ClaspRequest {
   std::vector<EnvironmentBox> environment;
   /// Clasp the claspable loop with a point nearest this one; none: the best ranked.
   std::optional<Eigen::Vector3d> loop_hint;
-  int targets = 12;  ///< clasp targets on the chosen loop
+  /// The hand's virtual-linking goal (mean |VLk|, eq. 4), what the controller drives toward in
+  /// both modes; none: the robot's own (RobotModel::vlink_goal).
+  std::optional<double> goal_linking;
 
   /// The stages' options. The hand's sizes (finger thickness, closed aperture) in `perception`
   /// are replaced by the robot's own (robots::hand_size()): loops are chosen for this hand.
+  /// perception.targets is the number of clasp targets on the chosen loop.
   perception::PerceptionOptions perception;
   servo::ControllerParameters controller;
-  servo::ControllerRunOptions controller_run;  ///< kControllerOnly; its goal_linking is replaced
+  servo::ControllerRunOptions controller_run;  ///< kControllerOnly
   ClaspPlanningOptions planning;               ///< kPlan
   ClaspSearch search;  ///< kPlan: replaces TS-RRT when set (the benchmark's baselines)
 
@@ -152,17 +155,17 @@ struct ClaspTimings {
 };
 
 struct ClaspResult {
+  /// The outcome; a search (TS-RRT or a ClaspSearch) sets kSuccess when it ends at a clasp.
   ClaspStatus status = ClaspStatus::kNoClasp;
-  bool success = false;   ///< status == kSuccess
   bool verified = false;  ///< kPlan: the final clasp passed the secure-clasp check
   std::string reason;     ///< one line: why it succeeded or not
 
-  Eigen::VectorXd start;                    ///< the completed start configuration
-  robots::HandSize hand;                    ///< the hand sizes the loops were chosen for
-  perception::ObjectModel object;           ///< K_d, the ranked loops, ...
-  int loop = -1;                            ///< the chosen loop (index into object.loops), -1: none
-  std::vector<servo::ClaspTarget> targets;  ///< on the chosen loop
-  CollisionMesh collision_mesh;             ///< object surface and the loop's tube
+  Eigen::VectorXd start;             ///< the completed start configuration
+  robots::HandSize hand;             ///< the hand sizes the loops were chosen for
+  perception::ObjectModel object;    ///< K_d, the ranked loops, ...
+  int loop = -1;                     ///< the chosen loop (index into object.loops), -1: none
+  std::vector<ClaspTarget> targets;  ///< on the chosen loop
+  CollisionMesh collision_mesh;      ///< object surface and the loop's tube
   std::vector<EnvironmentBox> environment;
   /// Space near the object that no sensor saw (perception::SensedSpace::blocked_voxels(): unknown
   /// voxels, and the support's below its surface): cubes of edge unseen_edge the robot must not
@@ -177,6 +180,7 @@ struct ClaspResult {
   ClaspStatistics statistics;
   ClaspTimings timings;
 
+  bool succeeded() const { return status == ClaspStatus::kSuccess; }
   /// The chosen loop, or nullptr.
   const perception::Loop* chosen_loop() const { return loop >= 0 ? &object.loops[loop] : nullptr; }
 };

@@ -10,7 +10,6 @@
 #include <random>
 
 #include "core/random_draws.hpp"
-
 #include "robots/kinematics.hpp"
 #include "tsrrt/secure_clasp.hpp"
 #include "tsrrt/secure_clasp_detail.hpp"

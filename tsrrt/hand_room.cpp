@@ -72,7 +72,7 @@ std::vector<Eigen::Vector2d> room_approach_angles() {
 
 std::vector<bool> clasp_room(const robots::RobotModel& model, const Eigen::VectorXd& closed_hand_q,
                              robots::CollisionWorld& environment, const servo::Points& loop,
-                             const std::vector<servo::ClaspTarget>& targets) {
+                             const std::vector<ClaspTarget>& targets) {
   const std::vector<Eigen::Vector2d> angles = room_approach_angles();
   FloatingHand closed(model, closed_hand_q);
   std::vector<bool> out;

@@ -46,6 +46,6 @@ std::vector<Eigen::Vector2d> room_approach_angles();
 /// is around the object's bar by design.
 std::vector<bool> clasp_room(const robots::RobotModel& model, const Eigen::VectorXd& closed_hand_q,
                              robots::CollisionWorld& environment, const servo::Points& loop,
-                             const std::vector<servo::ClaspTarget>& targets);
+                             const std::vector<ClaspTarget>& targets);
 
 }  // namespace claspplan::tsrrt

@@ -7,9 +7,9 @@
 #include <string>
 #include <vector>
 
-#include "core/random_draws.hpp"
 #include <Eigen/Core>
 
+#include "core/random_draws.hpp"
 #include "tsrrt/problem.hpp"
 
 namespace claspplan::tsrrt {

@@ -115,7 +115,7 @@ struct IcubRing {
     const servo::HandKinematics& hand = probe.hand();
     forward = hand.forward;
     const Curve ring = circle(centre + 0.15 * forward, 0.15, -forward, hand.sideways, 100);
-    std::vector<servo::ClaspTarget> targets;
+    std::vector<ClaspTarget> targets;
     for (int i = 0; i < 12; ++i) targets.push_back({ring[i * 8], hand.sideways});
     controller = std::make_unique<servo::ClaspController>(model, ring, targets);
   }

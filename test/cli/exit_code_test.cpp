@@ -2,9 +2,9 @@
 // failure, std::invalid_argument from an internal precondition included.
 #include <stdexcept>
 
-#include "core/input_error.hpp"
 #include <gtest/gtest.h>
 
+#include "core/input_error.hpp"
 #include "examples/command.hpp"
 #include "servo/linking.hpp"
 #include "test/support/cli_runner.hpp"

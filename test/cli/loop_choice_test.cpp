@@ -1,9 +1,9 @@
 // Loop choice for a hand (issue "Real objects"): a container's mouth is never a clasp, a jug's
 // handle is chosen by every hand, and a hole narrower than a hand's fingers is refused with the
 // reason, in the library and in `claspplan loops --robot`.
-#include "core/file_io.hpp"
 #include <gtest/gtest.h>
 
+#include "core/file_io.hpp"
 #include "examples/objects.hpp"
 #include "examples/scenario.hpp"
 #include "perception/depth_render.hpp"
@@ -71,7 +71,7 @@ TEST(LoopChoice, JugHandleIsChosenAndItsMouthRejectedForEveryHand) {
     EXPECT_TRUE(mouth) << hand << verdicts;
     // Targets lie on the handle, where the closed hand fits around it.
     ASSERT_FALSE(m.targets.empty());
-    for (const auto& t : m.targets) EXPECT_GT(t.p.y(), 0.055) << hand;
+    for (const auto& t : m.targets) EXPECT_GT(t.point.y(), 0.055) << hand;
   }
 }
 

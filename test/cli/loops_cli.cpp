@@ -1,10 +1,10 @@
 // `claspplan loops` as a user runs it: depth files, clouds and meshes in, loops and targets out;
 // every bad input is exit 2 with a one-line reason; an object without loops is exit 0.
-#include "core/file_io.hpp"
 #include <gtest/gtest.h>
 #include <opencv2/core.hpp>
 #include <opencv2/imgcodecs.hpp>
 
+#include "core/file_io.hpp"
 #include "examples/objects.hpp"
 #include "test/support/cli_runner.hpp"
 

@@ -124,6 +124,8 @@ TEST(Scenario, MalformedScenariosAreExitTwo) {
       {"missing_depth.yaml",
        "robot: kr5_sdh\nobject: {depth: [{image: no.png, camera: no.yaml}]}\n"},
       {"bad_start.yaml", "robot: kr5_sdh\nstart: [0, 9, 0]\nobject: {shape: {type: torus}}\n"},
+      {"zero_goal.yaml",
+       "robot: kr5_sdh\nobject: {shape: {type: torus}}\nplanner: {goal_linking: 0}\n"},
   };
   for (const auto& [name, text] : bad) {
     const CliResult r = run_cli({"run", dir.write(name, text), "--out", dir.file("out")});

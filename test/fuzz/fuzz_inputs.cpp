@@ -6,7 +6,6 @@
 #include <stdexcept>
 
 #include "core/file_io.hpp"
-
 #include "examples/curve_file.hpp"
 #include "examples/result_file.hpp"
 #include "examples/scenario.hpp"

@@ -8,9 +8,9 @@
 #include <random>
 #include <utility>
 
-#include "core/random_draws.hpp"
 #include <gtest/gtest.h>
 
+#include "core/random_draws.hpp"
 #include "perception/first_occurrences.hpp"
 
 namespace claspplan::perception {

@@ -246,7 +246,7 @@ TEST(Targets, EquallySpacedWithUnitTangents) {
                              : s < 2 ? Eigen::Vector3d(1, s - 1, 0)
                              : s < 3 ? Eigen::Vector3d(3 - s, 1, 0)
                                      : Eigen::Vector3d(0, 4 - s, 0);
-    EXPECT_NEAR((t[i].p - expect).norm(), 0.0, 1e-12) << i;
+    EXPECT_NEAR((t[i].point - expect).norm(), 0.0, 1e-12) << i;
     EXPECT_NEAR(t[i].tangent.norm(), 1.0, 1e-12);
   }
   EXPECT_NEAR((t[1].tangent - Eigen::Vector3d(1, 0, 0)).norm(), 0.0, 1e-12);  // mid-edge

@@ -13,9 +13,9 @@
 #include <random>
 #include <set>
 
-#include "core/file_io.hpp"
 #include <gtest/gtest.h>
 
+#include "core/file_io.hpp"
 #include "examples/objects.hpp"
 #include "perception/depth_render.hpp"
 #include "test/support/temp_dir.hpp"

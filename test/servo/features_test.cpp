@@ -36,7 +36,7 @@ servo::Points ring_through_hand(const servo::HandKinematics& hand, const Vector3
   return circle(centre + 0.15 * hand.forward, 0.15, -hand.forward, hand.sideways, 96);
 }
 
-std::vector<servo::ClaspTarget> far_target(const Vector3d& at) {
+std::vector<ClaspTarget> far_target(const Vector3d& at) {
   return {{at, Vector3d::UnitY()}};
 }
 
@@ -79,7 +79,7 @@ TEST(TaskFeatures, JacobiansMatchCentralDifferencesOnAllHands) {
       const Vector3d centre = probe.project(q).position;
       const servo::Points loop = ring_through_hand(probe.hand(), centre);
       // The target ahead and to the side, so that t_near is well defined.
-      const std::vector<servo::ClaspTarget> targets = {
+      const std::vector<ClaspTarget> targets = {
           {centre + Vector3d(0.2, 0.1, -0.05), Vector3d(0.3, 1.0, 0.2).normalized()}};
       servo::ClaspController c(m, loop, targets);
       const servo::TaskState x = c.project(q);

@@ -31,7 +31,7 @@ inline tsrrt::ClaspRequest floor_request(const TriangleMesh& object,
   floor.pose.translation() = Eigen::Vector3d(0.5, 0, -0.025);
   floor.size = Eigen::Vector3d(2.0, 2.0, 0.05);
   r.environment = {floor};
-  r.targets = 9;
+  r.perception.targets = 9;
   r.perception.workspace =
       Eigen::AlignedBox3d(Eigen::Vector3d(0.2, -0.4, 0.01), Eigen::Vector3d(0.95, 0.4, 0.7));
   r.planning.planner.pre_expansions = 200;

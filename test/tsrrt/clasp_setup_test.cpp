@@ -38,7 +38,7 @@ class PurseFromDepth : public ::testing::Test {
 TEST_F(PurseFromDepth, IsAVerifiedClaspFromTheStart) {
   const tsrrt::ClaspResult& r = *result_;
   ASSERT_EQ(r.status, tsrrt::ClaspStatus::kSuccess) << r.reason;
-  EXPECT_TRUE(r.success);
+  EXPECT_TRUE(r.succeeded());
   EXPECT_TRUE(r.verified);
   EXPECT_TRUE(r.verification.secure);
   EXPECT_EQ(r.reason, "verified clasp");
@@ -113,7 +113,7 @@ TEST_F(PurseFromDepth, SameRequestSameResult) {
 // points inside the robot's shapes against the sensed map, without the collision world).
 TEST_F(PurseFromDepth, NoPartOfTheRobotEntersUnseenSpace) {
   const tsrrt::ClaspResult& r = *result_;
-  ASSERT_TRUE(r.success) << r.reason;
+  ASSERT_TRUE(r.succeeded()) << r.reason;
   ASSERT_TRUE(r.object.sensed);
   const auto n = r.object.sensed->counts();
   EXPECT_GT(n[0], 0) << "the purse's inside and back are unknown";
@@ -136,7 +136,7 @@ TEST(ClaspSetup, CupWithoutHandleIsNoAnswerWithAReason) {
   cup.handle_radius = 0.0;
   const tsrrt::ClaspResult r = plan_clasp(request_for(objects::container(cup)));
   EXPECT_EQ(r.status, tsrrt::ClaspStatus::kNoClaspableLoop);
-  EXPECT_FALSE(r.success);
+  EXPECT_FALSE(r.succeeded());
   EXPECT_FALSE(r.reason.empty());
   EXPECT_EQ(r.chosen_loop(), nullptr);
   EXPECT_TRUE(r.motion.waypoints.empty());
@@ -235,6 +235,13 @@ TEST(ClaspSetup, MalformedRequestsThrow) {
   tsrrt::ClaspRequest too_long = request_for(purse());
   too_long.start = Eigen::VectorXd::Zero(sdh()->dof() + 1);
   EXPECT_THROW(plan_clasp(too_long), std::invalid_argument);
+
+  // One goal for both modes, within (0, 1]: 0 no longer stands for the hand's default.
+  for (const double goal : {0.0, -0.5, 1.5}) {
+    tsrrt::ClaspRequest bad_goal = request_for(purse());
+    bad_goal.goal_linking = goal;
+    EXPECT_THROW(plan_clasp(bad_goal), InputError) << goal;
+  }
 
   // A box around the whole robot: the start configuration is in collision.
   tsrrt::ClaspRequest boxed = request_for(purse());
