@@ -1,7 +1,8 @@
-// Plan a clasp from depth images with the library alone (tsrrt/clasp_setup.hpp): no scenario file,
-// no command line. The purse's example depth files stand in for a real camera's.
+// Plan a clasp from depth images with the library alone: no scenario file, no command line. The
+// demo's depth files (the paper's bag on a table, three depth cameras) stand in for a camera's.
+// Built in this tree and, by the package test, against an installed claspplan.
 //
-//   claspplan_api_example [FOLDER]    (depth files go to FOLDER, else to a temporary folder)
+//   claspplan_api_example DEPTH_FOLDER    (view_<i>.png with its camera file view_<i>.yaml)
 //
 // Exit 0 on a verified clasp, 1 when there is none, 2 on an error (bad input).
 #include <cstdio>
@@ -11,43 +12,46 @@
 #include <string>
 #include <vector>
 
-#include "examples/objects.hpp"
-#include "perception/pipeline.hpp"
-#include "robots/robot_model.hpp"
-#include "tsrrt/clasp_setup.hpp"
+#include <claspplan/perception/pipeline.hpp>
+#include <claspplan/robots/robot_model.hpp>
+#include <claspplan/tsrrt/clasp_setup.hpp>
 
 using namespace claspplan;
 
 int main(int argc, char** argv) try {
-  // 1. Depth images with their cameras: the purse on a table, seen by two depth cameras.
-  const std::string dir =
-      argc > 1 ? argv[1]
-               : (std::filesystem::temp_directory_path() / "claspplan_api_example").string();
-  std::vector<std::string> images, cameras;
-  for (const auto& [png, yaml] : objects::write_purse_depth_example(dir)) {
-    images.push_back(png);
-    cameras.push_back(yaml);
+  if (argc != 2) {
+    std::fprintf(stderr, "usage: %s DEPTH_FOLDER (e.g. examples/depth/bag_2)\n", argv[0]);
+    return 2;
   }
-  perception::PerceptionInputs inputs = perception::load_inputs(images, cameras);
-  // The cameras are calibrated in the table's frame (the purse at its origin); the table stands
-  // 0.55 m in front of the robot, along the robot's x axis.
-  for (auto& view : inputs.depth_views)
-    view.camera.T_world_camera.pretranslate(Eigen::Vector3d(0.55, 0, 0));
+  // 1. Depth images with their cameras (world frame: the robot's base_link).
+  std::vector<std::string> images, cameras;
+  for (int i = 0; std::filesystem::exists(std::filesystem::path(argv[1]) /
+                                          ("view_" + std::to_string(i) + ".png"));
+       ++i) {
+    const std::string stem =
+        (std::filesystem::path(argv[1]) / ("view_" + std::to_string(i))).string();
+    images.push_back(stem + ".png");
+    cameras.push_back(stem + ".yaml");
+  }
+  if (images.empty()) throw InputError(std::string(argv[1]) + ": no view_0.png");
 
   // 2. The request: robot and start, object, environment, options.
   tsrrt::ClaspRequest request;
   request.robot = std::make_shared<const robots::RobotModel>(robots::load_robot("kr5_sdh"));
-  request.start = (Eigen::VectorXd(6) << 0, -1.5707963, 1.5707963, 0, 1.5707963, 0).finished();
-  request.object = std::move(inputs);
-  tsrrt::EnvironmentBox floor;  // the floor, its top at z = 0
+  request.start = (Eigen::VectorXd(6) << 0, -1.9, 1.5707963, 0, 1.9, 0).finished();
+  request.object = perception::load_inputs(images, cameras);
+  tsrrt::EnvironmentBox floor, table;  // the floor's top at z = 0, a 20 cm table
   floor.pose.translation() = Eigen::Vector3d(0.5, 0, -0.025);
-  floor.size = Eigen::Vector3d(2.0, 2.0, 0.05);
-  request.environment.push_back(floor);
-  request.targets = 9;
-  // Keep the object's points: the robot's reach, above the floor.
+  floor.size = Eigen::Vector3d(2.5, 2.5, 0.05);
+  table.pose.translation() = Eigen::Vector3d(0.55, 0, 0.1);
+  table.size = Eigen::Vector3d(0.6, 0.6, 0.2);
+  request.environment = {floor, table};
+  request.loop_hint = Eigen::Vector3d(0.55, 0, 0.56);  // clasp the strap (the paper's loop)
+  request.perception.targets = 23;
+  // Keep the points above the table, around the object.
   request.perception.workspace =
-      Eigen::AlignedBox3d(Eigen::Vector3d(0.2, -0.4, 0.01), Eigen::Vector3d(0.95, 0.4, 0.7));
-  request.planning.planner.pre_expansions = 200;
+      Eigen::AlignedBox3d(Eigen::Vector3d(0.46, -0.21, 0.204), Eigen::Vector3d(0.64, 0.21, 0.675));
+  request.planning.planner.pre_expansions = 20;
   request.seed = 1;
   request.max_cycles = 300;  // a bound by cycles, not seconds: the same plan on any machine
   request.progress = [](const std::string& line) { std::fprintf(stderr, "%s\n", line.c_str()); };
@@ -60,7 +64,8 @@ int main(int argc, char** argv) try {
   if (const perception::Loop* loop = result.chosen_loop())
     std::printf("loop: rank %d of %zu, %zu targets (%s)\n", loop->rank, result.object.loops.size(),
                 result.targets.size(), loop->reason.c_str());
-  const double seconds = result.timings.perception + result.timings.search + result.timings.pruning;
+  const double seconds = result.timings.perception + result.timings.scene + result.timings.search +
+                         result.timings.pruning;
   std::printf("%d cycles, %d nodes, %zu waypoints, %.2f s\n", result.statistics.cycles,
               result.statistics.nodes, result.motion.waypoints.size(), seconds);
   if (!result.motion.waypoints.empty()) {
@@ -68,8 +73,11 @@ int main(int argc, char** argv) try {
     for (double l : result.final_state.finger_virtual_linking) std::printf(" %.3f", l);
     std::printf(")\n");
   }
-  return result.status == tsrrt::ClaspStatus::kSuccess ? 0 : 1;
-} catch (const std::exception& e) {  // InputError: bad input
+  return result.succeeded() && result.verified ? 0 : 1;
+} catch (const InputError& e) {  // bad input
   std::fprintf(stderr, "error: %s\n", e.what());
   return 2;
+} catch (const std::exception& e) {  // a failure that is not the input's fault
+  std::fprintf(stderr, "internal error: %s\n", e.what());
+  return 3;
 }

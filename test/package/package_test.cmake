@@ -2,11 +2,14 @@
 # the layout and that installed headers include only installed headers, then configure, build and
 # run test/package/consumer against the prefix alone (find_package(claspplan CONFIG REQUIRED)), and
 # run the installed program on an installed robot model.
+# Then the API example (examples/plan_from_depth.cpp) is built the same way and plans a verified
+# clasp from shipped depth files.
 #   -DBUILD_DIR=<claspplan build> -DCONSUMER_DIR=<test/package/consumer> -DWORK_DIR=<scratch>
+#   -DAPI_EXAMPLE=<examples/plan_from_depth.cpp> -DDEPTH_DIR=<examples/depth/bag_2>
 #   -DGENERATOR=... -DBUILD_TYPE=... -DCXX_COMPILER=... -DC_COMPILER=... [-DLAUNCHER=ccache]
 cmake_minimum_required(VERSION 3.16)
 
-foreach(var BUILD_DIR CONSUMER_DIR WORK_DIR GENERATOR CXX_COMPILER C_COMPILER)
+foreach(var BUILD_DIR CONSUMER_DIR WORK_DIR GENERATOR CXX_COMPILER C_COMPILER API_EXAMPLE DEPTH_DIR)
   if(NOT DEFINED ${var})
     message(FATAL_ERROR "package_test: -D${var}=... missing")
   endif()
@@ -39,7 +42,7 @@ set(expected bin/claspplan libexec/claspplan/claspplan-commands
     lib/cmake/claspplan/claspplanConfig.cmake
     lib/cmake/claspplan/claspplanConfigVersion.cmake lib/cmake/claspplan/claspplanTargets.cmake
     include/claspplan/tsrrt/clasp_setup.hpp)
-foreach(lib robots perception servo tsrrt)
+foreach(lib core robots perception servo tsrrt)
   list(APPEND expected lib/libclaspplan_${lib}.a)
 endforeach()
 foreach(robot kr5_sdh kr5_dlr kr5_icub kr5_armar3)
@@ -51,7 +54,8 @@ foreach(f IN LISTS expected)
   endif()
 endforeach()
 # Internal headers stay out (CMakeLists.txt, claspplan_export_library).
-foreach(f robots/embedded_models.hpp perception/point_index.hpp tsrrt/task_tree.hpp)
+foreach(f robots/embedded_models.hpp perception/point_index.hpp tsrrt/task_tree.hpp
+        core/file_io_detail.hpp)
   if(EXISTS "${prefix}/include/claspplan/${f}")
     message(FATAL_ERROR "package_test: the internal header ${f} is installed")
   endif()
@@ -85,6 +89,7 @@ run_checked("configuring the consumer" configure_log "${CMAKE_COMMAND}" -S "${CO
             -B "${consumer_build}" -G "${GENERATOR}" "-DCMAKE_BUILD_TYPE=${BUILD_TYPE}"
             "-DCMAKE_PREFIX_PATH=${prefix}" "-DCMAKE_CXX_COMPILER=${CXX_COMPILER}"
             "-DCMAKE_C_COMPILER=${C_COMPILER}" -DCMAKE_FIND_PACKAGE_NO_PACKAGE_REGISTRY=ON
+            "-DAPI_EXAMPLE=${API_EXAMPLE}"
             ${launcher_arg})
 if(NOT configure_log MATCHES "claspplan_DIR: ${prefix}/lib/cmake/claspplan\n")
   message(FATAL_ERROR "package_test: the consumer did not find the installed package:\n"
@@ -111,7 +116,15 @@ foreach(line IN LISTS expected_lines)
   endif()
 endforeach()
 
-# 5. The installed program, on an installed model file (the launcher starts claspplan-commands from
+# 5. The API example, built against the prefix, plans a verified clasp from the depth files.
+find_program(api_example_exe plan_from_depth PATHS "${consumer_build}"
+             "${consumer_build}/${BUILD_TYPE}" NO_DEFAULT_PATH REQUIRED)
+run_checked("the API example" api_out "${api_example_exe}" "${DEPTH_DIR}")
+if(NOT api_out MATCHES "verified: yes")
+  message(FATAL_ERROR "package_test: the API example planned no verified clasp:\n${api_out}")
+endif()
+
+# 6. The installed program, on an installed model file (the launcher starts claspplan-commands from
 # libexec).
 run_checked("the installed claspplan" robot_out "${prefix}/bin/claspplan" robot
             "${prefix}/share/claspplan/robots/kr5_icub.yaml")
