@@ -7,6 +7,7 @@
 #include <random>
 #include <set>
 
+#include "core/random_draws.hpp"
 #include "tsrrt/elapsed.hpp"
 #include "tsrrt/task_tree.hpp"
 

@@ -9,7 +9,6 @@
 
 #include <Eigen/Core>
 
-#include "core/random_draws.hpp"
 #include "tsrrt/problem.hpp"
 
 namespace claspplan::tsrrt {

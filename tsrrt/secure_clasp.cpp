@@ -15,6 +15,7 @@
 #include <unordered_map>
 
 #include "core/parallel.hpp"
+#include "core/random_draws.hpp"
 #include "robots/kinematics.hpp"
 #include "servo/linking.hpp"
 #include "tsrrt/clasp_scene.hpp"

@@ -54,8 +54,9 @@ foreach(f IN LISTS expected)
   endif()
 endforeach()
 # Internal headers stay out (CMakeLists.txt, claspplan_export_library).
-foreach(f robots/embedded_models.hpp perception/point_index.hpp tsrrt/task_tree.hpp
-        core/file_io_detail.hpp)
+foreach(f robots/embedded_models.hpp robots/triangle_tree.hpp perception/point_index.hpp
+        tsrrt/task_tree.hpp tsrrt/elapsed.hpp core/file_io_detail.hpp core/parallel.hpp
+        core/png_files.hpp core/random_draws.hpp)
   if(EXISTS "${prefix}/include/claspplan/${f}")
     message(FATAL_ERROR "package_test: the internal header ${f} is installed")
   endif()

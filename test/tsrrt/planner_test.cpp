@@ -10,6 +10,8 @@
 
 #include <gtest/gtest.h>
 
+#include "core/random_draws.hpp"
+
 namespace claspplan::test {
 namespace {
 
