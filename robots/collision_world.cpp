@@ -2,40 +2,22 @@
 
 #include <algorithm>
 #include <cmath>
-#include <mutex>
 #include <stdexcept>
 
-#include <fcl/geometry/bvh/BVH_model.h>
 #include <fcl/geometry/octree/octree.h>
 #include <fcl/geometry/shape/box.h>
 #include <fcl/geometry/shape/capsule.h>
 #include <fcl/geometry/shape/cylinder.h>
 #include <fcl/geometry/shape/sphere.h>
-#include <fcl/math/bv/OBB.h>
-#include <fcl/math/bv/OBBRSS.h>
 #include <fcl/narrowphase/collision.h>
 #include <fcl/narrowphase/distance.h>
 #include <octomap/OcTree.h>
 
+#include "robots/object_geometry.hpp"
 #include "robots/triangle_tree.hpp"
 
 namespace claspplan::robots {
 namespace {
-
-using Geometry = std::shared_ptr<fcl::CollisionGeometryd>;
-using Mesh = fcl::BVHModel<fcl::OBBRSSd>;
-
-struct Box3 {
-  Eigen::Vector3d lo, hi;
-  bool overlaps(const Box3& o) const {
-    return (lo.array() <= o.hi.array()).all() && (o.lo.array() <= hi.array()).all();
-  }
-  // Euclidean distance between two boxes (0 when they overlap).
-  double distance(const Box3& o) const {
-    const Eigen::Vector3d gap = (o.lo - hi).cwiseMax(lo - o.hi).cwiseMax(Eigen::Vector3d::Zero());
-    return gap.norm();
-  }
-};
 
 // Closed-form half extents of a primitive's axis-aligned box, for a shape rotated by R.
 struct Primitive {
@@ -115,49 +97,6 @@ bool fcl_collide(const fcl::CollisionGeometryd* a, const Eigen::Isometry3d& ta,
 }
 
 }  // namespace
-
-// The object's collision geometry, never modified once built (shared by worlds and threads).
-struct ObjectGeometry {
-  // OBBRSS, for distances. With the tree, only collisions are usual (the secure-clasp check): the
-  // mesh is built at the first distance query, once for all threads.
-  std::shared_ptr<Mesh> mesh;
-  std::vector<fcl::Vector3d> mesh_vertices;
-  std::vector<fcl::Triangle> mesh_triangles;
-  std::once_flag mesh_built;
-  std::shared_ptr<const TriangleTree> tree;  // exact spheres and capsules, when built for them
-  // What collision queries test: `mesh`, or with the tree the same mesh in OBBs, whose bound of
-  // a primitive FCL computes in closed form (OBBRSS fits one to its corners each query).
-  Geometry collide;
-  int triangles = 0;
-  Box3 local_box;
-
-  const Mesh& distance_mesh() const;
-};
-
-namespace {
-
-template <class Model>
-std::shared_ptr<Model> build_bvh(const std::vector<fcl::Vector3d>& vertices,
-                                 const std::vector<fcl::Triangle>& triangles) {
-  auto model = std::make_shared<Model>();
-  model->beginModel(static_cast<int>(triangles.size()), static_cast<int>(vertices.size()));
-  model->addSubModel(vertices, triangles);
-  model->endModel();
-  model->computeLocalAABB();
-  return model;
-}
-
-}  // namespace
-
-const Mesh& ObjectGeometry::distance_mesh() const {
-  auto& self = const_cast<ObjectGeometry&>(*this);
-  std::call_once(self.mesh_built, [&self] {
-    if (!self.mesh) self.mesh = build_bvh<Mesh>(self.mesh_vertices, self.mesh_triangles);
-    self.mesh_vertices = {};
-    self.mesh_triangles = {};
-  });
-  return *mesh;
-}
 
 struct CollisionWorld::Impl {
   RobotModel model;
@@ -323,48 +262,6 @@ CollisionWorld& CollisionWorld::operator=(CollisionWorld&&) noexcept = default;
 
 const RobotModel& CollisionWorld::model() const {
   return impl_->model;
-}
-
-std::shared_ptr<const ObjectGeometry> make_object_geometry(
-    const std::vector<Eigen::Vector3d>& vertices, const std::vector<Eigen::Vector3i>& triangles,
-    bool exact_round_shapes) {
-  if (vertices.empty()) throw std::invalid_argument("collision object: no vertices");
-  std::vector<fcl::Vector3d> v;
-  v.reserve(vertices.size());
-  Box3 b{vertices[0], vertices[0]};
-  for (size_t i = 0; i < vertices.size(); ++i) {
-    if (!vertices[i].allFinite())
-      throw std::invalid_argument("collision object: vertex " + std::to_string(i) +
-                                  " is not finite");
-    v.push_back(vertices[i]);
-    b.lo = b.lo.cwiseMin(vertices[i]);
-    b.hi = b.hi.cwiseMax(vertices[i]);
-  }
-  const int n = static_cast<int>(vertices.size());
-  std::vector<fcl::Triangle> t;
-  t.reserve(triangles.size());
-  for (size_t i = 0; i < triangles.size(); ++i) {
-    const Eigen::Vector3i& tri = triangles[i];
-    if ((tri.array() < 0).any() || (tri.array() >= n).any())
-      throw std::invalid_argument("collision object: triangle " + std::to_string(i) +
-                                  " has a vertex index out of range");
-    if (tri[0] == tri[1] || tri[1] == tri[2] || tri[0] == tri[2]) continue;
-    t.emplace_back(tri[0], tri[1], tri[2]);
-  }
-  if (t.empty()) throw std::invalid_argument("collision object: no usable triangle");
-  auto g = std::make_shared<ObjectGeometry>();
-  g->triangles = static_cast<int>(t.size());
-  if (exact_round_shapes) {
-    g->tree = std::make_shared<TriangleTree>(vertices, triangles);
-    g->collide = build_bvh<fcl::BVHModel<fcl::OBBd>>(v, t);
-    g->mesh_vertices = std::move(v);
-    g->mesh_triangles = std::move(t);
-  } else {
-    g->mesh = build_bvh<Mesh>(v, t);
-    g->collide = g->mesh;
-  }
-  g->local_box = b;
-  return g;
 }
 
 void CollisionWorld::set_object(const std::vector<Eigen::Vector3d>& vertices,
