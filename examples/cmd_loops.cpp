@@ -58,6 +58,106 @@ nlohmann::json bar_profile(const perception::Loop& l) {
   return a;
 }
 
+// `loops --json`: one object with the model, its loops, the sensed space and the timings.
+nlohmann::json loops_json(const LoopsOptions& o, const perception::ObjectModel& model,
+                          const std::optional<robots::HandSize>& hand) {
+  using namespace perception;
+  nlohmann::json loops = nlohmann::json::array();
+  for (const auto& l : model.loops) {
+    nlohmann::json pts = nlohmann::json::array();
+    for (const auto& p : l.points) pts.push_back(vec(p));
+    loops.push_back(
+        {{"length", l.length},
+         {"rank", l.rank},
+         {"claspable", l.claspable},
+         {"verdict", perception::verdict_name(l.verdict)},
+         {"reason", l.reason},
+         {"hole_width", l.hole_width},
+         {"bar_thickness", std::isfinite(l.bar_thickness) ? nlohmann::json(l.bar_thickness)
+                                                          : nlohmann::json(nullptr)},
+         {"fit", l.fit},
+         {"bar_profile", bar_profile(l)},
+         {"centre", vec(l.centre)},
+         {"normal", vec(l.normal)},
+         {"points", pts}});
+  }
+  nlohmann::json targets = nlohmann::json::array();
+  for (const auto& t : model.targets)
+    targets.push_back({{"p", vec(t.point)}, {"tangent", vec(t.tangent)}});
+  const auto& tm = model.timings;
+  nlohmann::json out = {{"beta1", model.beta1},
+                        {"stable_loops", static_cast<int>(model.loops.size())},
+                        {"unstable_loops", model.unstable_loops},
+                        {"persistence_d", model.persistence_d},
+                        {"d", model.d},
+                        {"d_rule", model.d_rule},
+                        {"mean_spacing", model.mean_spacing},
+                        {"points", static_cast<int>(model.cloud.size())},
+                        {"input_points", model.input_points},
+                        {"loops", loops},
+                        {"targets", targets},
+                        {"seconds", tm.total},
+                        {"timings",
+                         {{"preprocess", tm.preprocess},
+                          {"spacing", tm.downsample},
+                          {"delaunay", tm.delaunay},
+                          {"complex", tm.complex},
+                          {"homology", tm.homology},
+                          {"sensed", tm.sensed},
+                          {"ranking", tm.ranking}}}};
+  if (model.support_plane) {
+    const Eigen::Vector4d& p = *model.support_plane;
+    out["support_plane"] = {p[0], p[1], p[2], p[3]};
+  }
+  if (model.sensed) {
+    const auto n = model.sensed->counts();
+    const Eigen::AlignedBox3d& box = model.sensed->region();
+    out["sensed"] = {{"resolution", model.sensed->resolution()},
+                     {"region", {vec(box.min()), vec(box.max())}},
+                     {"unknown", n[0]},
+                     {"free", n[1]},
+                     {"occupied", n[2]}};
+  }
+  if (!o.png.empty()) out["png"] = o.png;
+  if (!o.sensed_png.empty()) out["sensed_png"] = o.sensed_png;
+  if (hand) {
+    out["hand"] = {{"robot", o.robot},
+                   {"finger_thickness", hand->finger_thickness},
+                   {"closed_aperture", hand->closed_aperture}};
+  }
+  return out;
+}
+
+// The human summary.
+void print_loops(const LoopsOptions& o, const perception::ObjectModel& model,
+                 const std::optional<robots::HandSize>& hand) {
+  std::printf("beta1 = %d   d = %.4f m   (%s)\n", model.beta1, model.d, model.d_rule.c_str());
+  std::printf("points: %zu (from %d input points)\n", model.cloud.size(), model.input_points);
+  if (model.unstable_loops > 0) {
+    std::printf(
+        "stable loops: %zu (%d more fill in by d' = %.4f m: sampling gaps or thin tubes, "
+        "dropped)\n",
+        model.loops.size(), model.unstable_loops, model.persistence_d);
+  }
+  if (hand) {
+    std::printf("hand %s: fingers %.4f m thick, closed aperture %.4f m\n", o.robot.c_str(),
+                hand->finger_thickness, hand->closed_aperture);
+  }
+  if (model.loops.empty()) {
+    std::printf("no loops: K_d has no hole at this d (beta1 = 0), nothing to clasp\n");
+  }
+  for (const auto& l : model.loops) {
+    std::printf("loop rank %d: length %.4f m, hole %.4f m wide: %s\n", l.rank, l.length,
+                l.hole_width, l.reason.c_str());
+  }
+  if (!model.targets.empty()) {
+    std::printf("clasp targets: %zu on loop rank 1\n", model.targets.size());
+  } else if (!model.loops.empty()) {
+    std::printf("no claspable loop (see the reasons above)\n");
+  }
+  std::printf("pipeline: %.3f s\n", model.timings.total);
+}
+
 int run_loops(const LoopsOptions& o) {
   using namespace perception;
   std::vector<Eigen::Vector3d> views;
@@ -106,97 +206,10 @@ int run_loops(const LoopsOptions& o) {
   }
 
   if (o.json) {
-    nlohmann::json loops = nlohmann::json::array();
-    for (const auto& l : model.loops) {
-      nlohmann::json pts = nlohmann::json::array();
-      for (const auto& p : l.points) pts.push_back(vec(p));
-      loops.push_back(
-          {{"length", l.length},
-           {"rank", l.rank},
-           {"claspable", l.claspable},
-           {"verdict", perception::verdict_name(l.verdict)},
-           {"reason", l.reason},
-           {"hole_width", l.hole_width},
-           {"bar_thickness", std::isfinite(l.bar_thickness) ? nlohmann::json(l.bar_thickness)
-                                                            : nlohmann::json(nullptr)},
-           {"fit", l.fit},
-           {"bar_profile", bar_profile(l)},
-           {"centre", vec(l.centre)},
-           {"normal", vec(l.normal)},
-           {"points", pts}});
-    }
-    nlohmann::json targets = nlohmann::json::array();
-    for (const auto& t : model.targets)
-      targets.push_back({{"p", vec(t.point)}, {"tangent", vec(t.tangent)}});
-    const auto& tm = model.timings;
-    nlohmann::json out = {{"beta1", model.beta1},
-                          {"stable_loops", static_cast<int>(model.loops.size())},
-                          {"unstable_loops", model.unstable_loops},
-                          {"persistence_d", model.persistence_d},
-                          {"d", model.d},
-                          {"d_rule", model.d_rule},
-                          {"mean_spacing", model.mean_spacing},
-                          {"points", static_cast<int>(model.cloud.size())},
-                          {"input_points", model.input_points},
-                          {"loops", loops},
-                          {"targets", targets},
-                          {"seconds", tm.total},
-                          {"timings",
-                           {{"preprocess", tm.preprocess},
-                            {"spacing", tm.downsample},
-                            {"delaunay", tm.delaunay},
-                            {"complex", tm.complex},
-                            {"homology", tm.homology},
-                            {"sensed", tm.sensed},
-                            {"ranking", tm.ranking}}}};
-    if (model.support_plane) {
-      const Eigen::Vector4d& p = *model.support_plane;
-      out["support_plane"] = {p[0], p[1], p[2], p[3]};
-    }
-    if (model.sensed) {
-      const auto n = model.sensed->counts();
-      const Eigen::AlignedBox3d& box = model.sensed->region();
-      out["sensed"] = {{"resolution", model.sensed->resolution()},
-                       {"region", {vec(box.min()), vec(box.max())}},
-                       {"unknown", n[0]},
-                       {"free", n[1]},
-                       {"occupied", n[2]}};
-    }
-    if (!o.png.empty()) out["png"] = o.png;
-    if (!o.sensed_png.empty()) out["sensed_png"] = o.sensed_png;
-    if (hand) {
-      out["hand"] = {{"robot", o.robot},
-                     {"finger_thickness", hand->finger_thickness},
-                     {"closed_aperture", hand->closed_aperture}};
-    }
-    print_json(out);
-    return kOk;
+    print_json(loops_json(o, model, hand));
+  } else {
+    print_loops(o, model, hand);
   }
-  std::printf("beta1 = %d   d = %.4f m   (%s)\n", model.beta1, model.d, model.d_rule.c_str());
-  std::printf("points: %zu (from %d input points)\n", model.cloud.size(), model.input_points);
-  if (model.unstable_loops > 0) {
-    std::printf(
-        "stable loops: %zu (%d more fill in by d' = %.4f m: sampling gaps or thin tubes, "
-        "dropped)\n",
-        model.loops.size(), model.unstable_loops, model.persistence_d);
-  }
-  if (hand) {
-    std::printf("hand %s: fingers %.4f m thick, closed aperture %.4f m\n", o.robot.c_str(),
-                hand->finger_thickness, hand->closed_aperture);
-  }
-  if (model.loops.empty()) {
-    std::printf("no loops: K_d has no hole at this d (beta1 = 0), nothing to clasp\n");
-  }
-  for (const auto& l : model.loops) {
-    std::printf("loop rank %d: length %.4f m, hole %.4f m wide: %s\n", l.rank, l.length,
-                l.hole_width, l.reason.c_str());
-  }
-  if (!model.targets.empty()) {
-    std::printf("clasp targets: %zu on loop rank 1\n", model.targets.size());
-  } else if (!model.loops.empty()) {
-    std::printf("no claspable loop (see the reasons above)\n");
-  }
-  std::printf("pipeline: %.3f s\n", model.timings.total);
   return kOk;
 }
 

@@ -269,42 +269,8 @@ Scenario load_scenario(const std::string& path) {
 
 namespace {
 
-Scenario read_scenario(const YamlField& root, const std::string& path,
-                       const std::string& base_dir) {
-  const Reader r(root);
-  r.only({"name", "robot", "start", "object", "environment", "clasp", "seed", "perception",
-          "controller", "planner"});
-  const fs::path dir(base_dir);
-
-  Scenario s;
-  s.path = path;
-  s.name = r.text("name", fs::path(path).stem().string());
-  if (!r.has("robot"))
-    r.fail("robot", "missing (a built-in robot name or a hand-description file)");
-  s.robot = r.text("robot");
-  const std::vector<std::string> builtin = robots::builtin_robots();
-  if (std::find(builtin.begin(), builtin.end(), s.robot) == builtin.end()) {
-    s.robot = resolve(dir, s.robot);
-  }
-  s.start = r.numbers("start");
-  s.seed = static_cast<std::uint64_t>(r.integer("seed", 1, 0, 2147483647));
-
-  if (!r.has("object")) r.fail("object", "missing");
-  read_object(r.child("object"), dir, s.object);
-
-  if (r.has("environment")) {
-    const Reader env = r.child("environment");
-    env.only({"boxes"});
-    for (const Reader& b : env.maps("boxes", "{size, position, rpy}", false))
-      s.boxes.push_back(read_box(b));
-  }
-
-  const Reader clasp = r.child("clasp");
-  clasp.only({"near", "targets"});
-  if (clasp.has("near")) s.loop_hint = clasp.vector3("near", Eigen::Vector3d::Zero());
-  s.perception.targets = clasp.integer("targets", s.perception.targets, 1, 200);
-
-  const Reader per = r.child("perception");
+// The `perception` section (its seed defaults to the scenario's).
+void read_perception(const Reader& per, Scenario& s) {
   per.only({"points", "d", "d_factor", "min_hole", "seed", "workspace", "remove_plane"});
   auto& po = s.perception;
   po.points = per.integer("points", po.points, 10, perception::kMaxPoints);
@@ -320,8 +286,10 @@ Scenario read_scenario(const YamlField& root, const std::string& path,
     po.workspace = Eigen::AlignedBox3d(w.vector3("min", Eigen::Vector3d::Constant(-1e9)),
                                        w.vector3("max", Eigen::Vector3d::Constant(1e9)));
   }
+}
 
-  const Reader ctl = r.child("controller");
+// The `controller` section: the controller's gains and the controller-only run's limits.
+void read_controller(const Reader& ctl, Scenario& s) {
   ctl.only({"gain_distance", "gain_width", "dt", "max_step", "damping", "singular_threshold",
             "hold_distance", "max_position_error", "pose_bias_gain", "hand_in_arm_tasks",
             "arm_in_hand_task", "max_steps", "stall_steps"});
@@ -341,8 +309,11 @@ Scenario read_scenario(const YamlField& root, const std::string& path,
   s.controller_run.max_steps = ctl.integer("max_steps", s.controller_run.max_steps, 1, 1000000);
   s.controller_run.stall_steps =
       ctl.integer("stall_steps", s.controller_run.stall_steps, 1, 1000000);
+}
 
-  const Reader pl = r.child("planner");
+// The `planner` section: TS-RRT, the linking goal, closing and verification (their seeds are the
+// scenario's).
+void read_planner(const Reader& pl, const std::string& path, Scenario& s) {
   pl.only({"random_probability",
            "pre_expansions",
            "max_cycles",
@@ -408,6 +379,46 @@ Scenario read_scenario(const YamlField& root, const std::string& path,
                             "planner.verify_motions");
   o.secure.seed = s.seed;
   o.verify_in_search = pl.boolean("verify_in_search", o.verify_in_search);
+}
+
+Scenario read_scenario(const YamlField& root, const std::string& path,
+                       const std::string& base_dir) {
+  const Reader r(root);
+  r.only({"name", "robot", "start", "object", "environment", "clasp", "seed", "perception",
+          "controller", "planner"});
+  const fs::path dir(base_dir);
+
+  Scenario s;
+  s.path = path;
+  s.name = r.text("name", fs::path(path).stem().string());
+  if (!r.has("robot"))
+    r.fail("robot", "missing (a built-in robot name or a hand-description file)");
+  s.robot = r.text("robot");
+  const std::vector<std::string> builtin = robots::builtin_robots();
+  if (std::find(builtin.begin(), builtin.end(), s.robot) == builtin.end()) {
+    s.robot = resolve(dir, s.robot);
+  }
+  s.start = r.numbers("start");
+  s.seed = static_cast<std::uint64_t>(r.integer("seed", 1, 0, 2147483647));
+
+  if (!r.has("object")) r.fail("object", "missing");
+  read_object(r.child("object"), dir, s.object);
+
+  if (r.has("environment")) {
+    const Reader env = r.child("environment");
+    env.only({"boxes"});
+    for (const Reader& b : env.maps("boxes", "{size, position, rpy}", false))
+      s.boxes.push_back(read_box(b));
+  }
+
+  const Reader clasp = r.child("clasp");
+  clasp.only({"near", "targets"});
+  if (clasp.has("near")) s.loop_hint = clasp.vector3("near", Eigen::Vector3d::Zero());
+  s.perception.targets = clasp.integer("targets", s.perception.targets, 1, 200);
+
+  read_perception(r.child("perception"), s);
+  read_controller(r.child("controller"), s);
+  read_planner(r.child("planner"), path, s);
   return s;
 }
 
@@ -482,7 +493,7 @@ Scenario load_scenario_text(const std::string& text, const std::string& path,
 TriangleMesh boxes_mesh(const std::vector<EnvironmentBox>& boxes) {
   TriangleMesh out;
   for (const auto& b : boxes) {
-    const RenderMesh box = box_mesh(b.size);
+    const TriangleMesh box = box_mesh(b.size);
     TriangleMesh m;
     m.vertices = box.vertices;
     for (const auto& t : box.triangles) m.triangles.push_back({t[0], t[1], t[2]});
