@@ -81,7 +81,7 @@ void check_point(const std::string& path, const Eigen::Vector3d& p, long long in
     fail(path, "point " + std::to_string(index) + " has a NaN or infinite coordinate");
 }
 
-void fan(std::vector<std::array<int, 3>>& tris, const std::vector<long long>& face, long long nv,
+void fan(std::vector<Eigen::Vector3i>& tris, const std::vector<long long>& face, long long nv,
          const std::string& path, long long index) {
   if (face.size() < 3) fail(path, "face " + std::to_string(index) + " has fewer than 3 vertices");
   for (long long v : face)

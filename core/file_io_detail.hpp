@@ -86,7 +86,7 @@ class Tokens {
 void check_point(const std::string& path, const Eigen::Vector3d& p, long long index);
 
 /// Appends a polygon as a triangle fan; fails on fewer than 3 vertices or an index outside [0, nv).
-void fan(std::vector<std::array<int, 3>>& tris, const std::vector<long long>& face, long long nv,
+void fan(std::vector<Eigen::Vector3i>& tris, const std::vector<long long>& face, long long nv,
          const std::string& path, long long index);
 
 /// A PCD file's points in file order with NaN points kept (PCL's "no reading"; infinite

@@ -15,7 +15,7 @@ namespace {
 
 constexpr double kMinArea = 1e-18;
 
-double triangle_area(const TriangleMesh& m, const std::array<int, 3>& t) {
+double triangle_area(const TriangleMesh& m, const Eigen::Vector3i& t) {
   return 0.5 *
          (m.vertices[t[1]] - m.vertices[t[0]]).cross(m.vertices[t[2]] - m.vertices[t[0]]).norm();
 }

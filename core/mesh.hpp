@@ -16,9 +16,10 @@ namespace claspplan {
 using PointCloud = std::vector<Eigen::Vector3d>;
 
 /// An indexed triangle mesh (counter-clockwise seen from outside for closed meshes).
+/// The one mesh type: object surfaces, collision models and drawn shapes alike.
 struct TriangleMesh {
   std::vector<Eigen::Vector3d> vertices;
-  std::vector<std::array<int, 3>> triangles;
+  std::vector<Eigen::Vector3i> triangles;  ///< vertex indices
 };
 
 /// Throws std::invalid_argument("<what>: ...") for an empty mesh, out-of-range indices or

@@ -197,7 +197,7 @@ TriangleMesh parse_stl(const std::string& data, const std::string& path) {
   TriangleMesh mesh;
   std::map<std::array<double, 3>, int> index;
   for (size_t i = 0; i < corners.size(); i += 3) {
-    std::array<int, 3> t;
+    Eigen::Vector3i t;
     for (int k = 0; k < 3; ++k) {
       const Eigen::Vector3d& p = corners[i + k];
       const auto [it, added] = index.emplace(std::array<double, 3>{p.x(), p.y(), p.z()},

@@ -196,7 +196,7 @@ void check_ply_counts(const std::string& path, const std::string& data, const Pl
 struct PlyData {
   bool keep_nan = false;
   PointCloud points;
-  std::vector<std::array<int, 3>> triangles;
+  std::vector<Eigen::Vector3i> triangles;
 };
 
 void read_ply_binary(const std::string& path, const std::string& data, const PlyHeader& h,
@@ -319,7 +319,7 @@ GeometryFile file_io_detail::parse_ply_file(const std::string& data, const std::
 // Writer
 
 namespace {
-void write_ply_impl(const PointCloud& v, const std::vector<std::array<int, 3>>* tris,
+void write_ply_impl(const PointCloud& v, const std::vector<Eigen::Vector3i>* tris,
                     const std::string& path, bool binary) {
   auto out = open_out(path, true);
   out << "ply\nformat " << (binary ? "binary_little_endian" : "ascii") << " 1.0\n";

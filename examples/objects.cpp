@@ -127,7 +127,7 @@ TriangleMesh mesh_from_sdf(const Sdf& f, const Eigen::AlignedBox3d& box, double 
   static const int kTets[6][4] = {{0, 1, 3, 7}, {0, 1, 5, 7}, {0, 2, 3, 7},
                                   {0, 2, 6, 7}, {0, 4, 5, 7}, {0, 4, 6, 7}};
   auto emit = [&](int a, int b, int c, const Eigen::Vector3d& outward) {
-    std::array<int, 3> t{a, b, c};
+    Eigen::Vector3i t(a, b, c);
     const Eigen::Vector3d& p = m.vertices[a];
     if ((m.vertices[b] - p).cross(m.vertices[c] - p).dot(outward) < 0) std::swap(t[1], t[2]);
     m.triangles.push_back(t);

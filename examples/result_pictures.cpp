@@ -15,7 +15,7 @@ const cv::Scalar kBox(200, 190, 180);
 const cv::Scalar kLoop(30, 30, 220);        // red
 const cv::Scalar kStartLoop(220, 120, 40);  // blue
 
-RenderMesh shape_mesh(const robots::CollisionShape& s) {
+TriangleMesh shape_mesh(const robots::CollisionShape& s) {
   using Type = robots::CollisionShape::Type;
   switch (s.type) {
     case Type::kBox:

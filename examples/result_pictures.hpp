@@ -18,7 +18,7 @@ namespace claspplan::cli {
 
 struct SceneGeometry {
   const robots::RobotModel& model;
-  RenderMesh object;  ///< the object's collision mesh (K_d triangles)
+  TriangleMesh object;  ///< the object's collision mesh (K_d triangles)
   std::vector<EnvironmentBox> boxes;
   std::vector<Eigen::Vector3d> loop;  ///< the clasped loop
 };

@@ -16,7 +16,7 @@ namespace {
 constexpr double kPi = 3.14159265358979323846;
 
 // A ring of `sides` vertices at height z.
-void add_ring(RenderMesh& m, double radius, double z, int sides) {
+void add_ring(TriangleMesh& m, double radius, double z, int sides) {
   for (int i = 0; i < sides; ++i) {
     const double t = 2.0 * kPi * i / sides;
     m.vertices.emplace_back(radius * std::cos(t), radius * std::sin(t), z);
@@ -24,7 +24,7 @@ void add_ring(RenderMesh& m, double radius, double z, int sides) {
 }
 
 // Joins ring r0 (starting at vertex a) to ring r1 (at b).
-void join_rings(RenderMesh& m, int a, int b, int sides) {
+void join_rings(TriangleMesh& m, int a, int b, int sides) {
   for (int i = 0; i < sides; ++i) {
     const int j = (i + 1) % sides;
     m.triangles.emplace_back(a + i, a + j, b + j);
@@ -32,7 +32,7 @@ void join_rings(RenderMesh& m, int a, int b, int sides) {
   }
 }
 
-void cap(RenderMesh& m, int ring, int sides, double z, bool up) {
+void cap(TriangleMesh& m, int ring, int sides, double z, bool up) {
   const int centre = static_cast<int>(m.vertices.size());
   m.vertices.emplace_back(0.0, 0.0, z);
   for (int i = 0; i < sides; ++i) {
@@ -47,8 +47,8 @@ void cap(RenderMesh& m, int ring, int sides, double z, bool up) {
 
 }  // namespace
 
-RenderMesh box_mesh(const Eigen::Vector3d& size) {
-  RenderMesh m;
+TriangleMesh box_mesh(const Eigen::Vector3d& size) {
+  TriangleMesh m;
   const Eigen::Vector3d h = size / 2.0;
   for (int i = 0; i < 8; ++i) {
     m.vertices.emplace_back((i & 1) ? h.x() : -h.x(), (i & 2) ? h.y() : -h.y(),
@@ -63,8 +63,8 @@ RenderMesh box_mesh(const Eigen::Vector3d& size) {
   return m;
 }
 
-RenderMesh cylinder_mesh(double radius, double length, int sides) {
-  RenderMesh m;
+TriangleMesh cylinder_mesh(double radius, double length, int sides) {
+  TriangleMesh m;
   add_ring(m, radius, -length / 2.0, sides);
   add_ring(m, radius, length / 2.0, sides);
   join_rings(m, 0, sides, sides);
@@ -73,10 +73,10 @@ RenderMesh cylinder_mesh(double radius, double length, int sides) {
   return m;
 }
 
-RenderMesh capsule_mesh(double radius, double length, int sides) {
+TriangleMesh capsule_mesh(double radius, double length, int sides) {
   // Latitude rings from the bottom pole to the top pole; the two equators bound the cylinder.
   const int rings = 4;
-  RenderMesh m;
+  TriangleMesh m;
   std::vector<int> starts;
   const auto ring_at = [&](double latitude, double centre_z) {
     starts.push_back(static_cast<int>(m.vertices.size()));
@@ -91,7 +91,7 @@ RenderMesh capsule_mesh(double radius, double length, int sides) {
   return m;
 }
 
-RenderMesh sphere_mesh(double radius, int sides) {
+TriangleMesh sphere_mesh(double radius, int sides) {
   return capsule_mesh(radius, 0.0, sides);
 }
 
@@ -146,7 +146,7 @@ void SceneImage::fill_triangle(const Eigen::Vector3d& a, const Eigen::Vector3d& 
   }
 }
 
-void SceneImage::draw_mesh(const RenderMesh& mesh, const Eigen::Matrix4d& pose,
+void SceneImage::draw_mesh(const TriangleMesh& mesh, const Eigen::Matrix4d& pose,
                            const cv::Scalar& colour) {
   const Eigen::Matrix3d R = pose.topLeftCorner<3, 3>();
   const Eigen::Vector3d t = pose.topRightCorner<3, 1>();

@@ -8,18 +8,15 @@
 #include <Eigen/Core>
 #include <opencv2/core.hpp>
 
+#include "core/mesh.hpp"
+
 namespace claspplan::cli {
 
-struct RenderMesh {
-  std::vector<Eigen::Vector3d> vertices;
-  std::vector<Eigen::Vector3i> triangles;
-};
-
 /// Triangulated primitives (centred at the origin; cylinders and capsules along z).
-RenderMesh box_mesh(const Eigen::Vector3d& size);
-RenderMesh cylinder_mesh(double radius, double length, int sides = 16);
-RenderMesh sphere_mesh(double radius, int sides = 16);
-RenderMesh capsule_mesh(double radius, double length, int sides = 16);
+TriangleMesh box_mesh(const Eigen::Vector3d& size);
+TriangleMesh cylinder_mesh(double radius, double length, int sides = 16);
+TriangleMesh sphere_mesh(double radius, int sides = 16);
+TriangleMesh capsule_mesh(double radius, double length, int sides = 16);
 
 /// Where the camera is and what it looks at (world frame, z up).
 struct View {
@@ -35,7 +32,7 @@ class SceneImage {
   explicit SceneImage(const View& view);
 
   /// Colours are BGR in 0–255. Meshes are shaded by the angle to the viewing direction.
-  void draw_mesh(const RenderMesh& mesh, const Eigen::Matrix4d& pose, const cv::Scalar& colour);
+  void draw_mesh(const TriangleMesh& mesh, const Eigen::Matrix4d& pose, const cv::Scalar& colour);
   /// Depth-tested unless `on_top`.
   void draw_polyline(const std::vector<Eigen::Vector3d>& points, bool closed,
                      const cv::Scalar& colour, int thickness, bool on_top = false);

@@ -68,36 +68,34 @@ std::string no_loop_reason(const perception::ObjectModel& object) {
   return why;
 }
 
-void object_collision_mesh(const perception::ObjectModel& object, const perception::Loop& loop,
-                           const Eigen::AlignedBox3d& workspace, const std::string& name,
-                           std::vector<Eigen::Vector3d>& vertices,
-                           std::vector<Eigen::Vector3i>& triangles) {
-  vertices.clear();
-  triangles.clear();
+TriangleMesh object_collision_mesh(const perception::ObjectModel& object,
+                                   const perception::Loop& loop,
+                                   const Eigen::AlignedBox3d& workspace, const std::string& name) {
+  TriangleMesh mesh;
   if (!object.views.empty()) {
     perception::DepthSurfaceOptions so;
     so.workspace = workspace;
     so.support_plane = object.support_plane;
-    const TriangleMesh seen = perception::depth_surface_mesh(object.views, so);
-    vertices = seen.vertices;
-    for (const auto& t : seen.triangles) triangles.emplace_back(t[0], t[1], t[2]);
+    mesh = perception::depth_surface_mesh(object.views, so);
   } else {
-    vertices = object.complex.points;
+    mesh.vertices = object.complex.points;
     for (int i = 0; i < static_cast<int>(object.complex.triangles.size()); ++i) {
       const auto v = object.complex.triangle_vertices(i);
-      triangles.emplace_back(v[0], v[1], v[2]);
+      mesh.triangles.emplace_back(v[0], v[1], v[2]);
     }
   }
-  if (triangles.empty()) {
+  if (mesh.triangles.empty()) {
     throw InputError((name.empty() ? "" : name + ": ") +
                      "the object has no surface to collide with (no depth surface "
                      "and no K_d triangles: raise perception.d or the point count)");
   }
-  loop_tube(loop.points, kLoopTubeRadius, vertices, triangles);
+  loop_tube(loop.points, kLoopTubeRadius, mesh);
+  return mesh;
 }
 
-void loop_tube(const servo::Points& loop, double radius, std::vector<Eigen::Vector3d>& vertices,
-               std::vector<Eigen::Vector3i>& triangles) {
+void loop_tube(const servo::Points& loop, double radius, TriangleMesh& mesh) {
+  std::vector<Eigen::Vector3d>& vertices = mesh.vertices;
+  std::vector<Eigen::Vector3i>& triangles = mesh.triangles;
   constexpr int kSides = 6;
   const int n = static_cast<int>(loop.size());
   const int first = static_cast<int>(vertices.size());

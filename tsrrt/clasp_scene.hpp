@@ -30,9 +30,9 @@ std::string no_loop_reason(const perception::ObjectModel& object);
 
 /// A closed tube of `radius` along a loop (hexagonal cross-section), as triangles. The loop is
 /// material of the object, so adding it to the collision mesh keeps the loop from slipping
-/// through gaps of a sparsely sampled surface (a thin handle seen by few depth views).
-void loop_tube(const servo::Points& loop, double radius, std::vector<Eigen::Vector3d>& vertices,
-               std::vector<Eigen::Vector3i>& triangles);
+/// through gaps of a sparsely sampled surface (a thin handle seen by few depth views). Appended
+/// to `mesh`.
+void loop_tube(const servo::Points& loop, double radius, TriangleMesh& mesh);
 
 /// The loop's material in the collision model (m): see loop_tube().
 constexpr double kLoopTubeRadius = 0.003;
@@ -42,10 +42,9 @@ constexpr double kLoopTubeRadius = 0.003;
 /// triangles for clouds and whole-surface samples; and a thin tube along the clasped loop, so the
 /// loop itself is always material. `workspace` crops the depth surface (the perception's crop).
 /// Throws std::invalid_argument when there is no surface at all; `name` prefixes the message.
-void object_collision_mesh(const perception::ObjectModel& object, const perception::Loop& loop,
-                           const Eigen::AlignedBox3d& workspace, const std::string& name,
-                           std::vector<Eigen::Vector3d>& vertices,
-                           std::vector<Eigen::Vector3i>& triangles);
+TriangleMesh object_collision_mesh(const perception::ObjectModel& object,
+                                   const perception::Loop& loop,
+                                   const Eigen::AlignedBox3d& workspace, const std::string& name);
 
 /// Everything a planned clasp needs beyond the scene.
 struct ClaspPlanningOptions {

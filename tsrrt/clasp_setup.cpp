@@ -287,8 +287,7 @@ ClaspResult plan_clasp(const ClaspRequest& request) {
                   n[1] / all, n[2] / all, n[0] / all, r.unseen_voxels.size());
     say(line);
   }
-  object_collision_mesh(r.object, loop, perception.workspace, request.name,
-                        r.collision_mesh.vertices, r.collision_mesh.triangles);
+  r.collision_mesh = object_collision_mesh(r.object, loop, perception.workspace, request.name);
   robots::CollisionWorld world = make_collision_world(model, r);
   start_touches(world);
 

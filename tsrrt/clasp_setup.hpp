@@ -25,6 +25,7 @@
 #include <Eigen/Geometry>
 
 #include "core/input_error.hpp"
+#include "core/mesh.hpp"
 #include "perception/pipeline.hpp"
 #include "robots/collision_world.hpp"
 #include "robots/hand_size.hpp"
@@ -99,12 +100,6 @@ enum class ClaspStatus {
   kNoClasp,          ///< ... no (verified) clasp within the budget, or the controller stopped
 };
 
-/// The object's collision model used everywhere (planning, closing, verification), world frame.
-struct CollisionMesh {
-  std::vector<Eigen::Vector3d> vertices;
-  std::vector<Eigen::Vector3i> triangles;
-};
-
 struct ClaspMotion {
   /// Start to final configuration (the closed hand last); empty when no motion was found.
   std::vector<Eigen::VectorXd> waypoints;
@@ -165,7 +160,9 @@ struct ClaspResult {
   perception::ObjectModel object;    ///< K_d, the ranked loops, ...
   int loop = -1;                     ///< the chosen loop (index into object.loops), -1: none
   std::vector<ClaspTarget> targets;  ///< on the chosen loop
-  CollisionMesh collision_mesh;      ///< object surface and the loop's tube
+  /// The object's collision model used everywhere (planning, closing, verification), world
+  /// frame: its seen surface and the loop's tube.
+  TriangleMesh collision_mesh;
   std::vector<EnvironmentBox> environment;
   /// Space near the object that no sensor saw (perception::SensedSpace::blocked_voxels(): unknown
   /// voxels, and the support's below its surface): cubes of edge unseen_edge the robot must not

@@ -6,12 +6,11 @@
 
 #include <Eigen/Core>
 
+#include "core/mesh.hpp"
+
 namespace claspplan::test {
 
-struct TriMesh {
-  std::vector<Eigen::Vector3d> vertices;
-  std::vector<Eigen::Vector3i> triangles;
-};
+using TriMesh = TriangleMesh;
 
 /// A torus around the z axis through the origin: major radius R, tube radius r, nu × nv quads
 /// (2·nu·nv triangles).

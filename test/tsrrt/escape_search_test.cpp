@@ -152,7 +152,7 @@ Ring cup_hooked_on_thumb() {
   const TriangleMesh mesh = objects::container(c);
   Ring cup;
   for (const auto& v : mesh.vertices) cup.mesh.vertices.push_back(v + at);
-  for (const auto& t : mesh.triangles) cup.mesh.triangles.emplace_back(t[0], t[1], t[2]);
+  cup.mesh.triangles = mesh.triangles;
   const double rim = c.radius - 0.5 * c.wall;
   for (int i = 0; i < 48; ++i) {
     const double u = 2.0 * M_PI * i / 48;

@@ -12,10 +12,12 @@ namespace {
 TEST(LoopTube, FollowsTheLoopWithoutTwisting) {
   // A loop that turns in 3-D: one component of a torus link.
   const Curve loop = torus_link_component(2, 0, 90, 0.2, 0.05);
-  std::vector<Eigen::Vector3d> vertices = {Eigen::Vector3d::Zero()};  // appended after these
-  std::vector<Eigen::Vector3i> triangles;
+  TriangleMesh tube;
+  tube.vertices = {Eigen::Vector3d::Zero()};  // appended after these
   const double r = 0.003;
-  tsrrt::loop_tube(loop, r, vertices, triangles);
+  tsrrt::loop_tube(loop, r, tube);
+  const std::vector<Eigen::Vector3d>& vertices = tube.vertices;
+  const std::vector<Eigen::Vector3i>& triangles = tube.triangles;
   const int sides = 6, n = static_cast<int>(loop.size());
   ASSERT_EQ(vertices.size(), 1u + n * sides);
   ASSERT_EQ(triangles.size(), static_cast<std::size_t>(2 * n * sides));

@@ -57,10 +57,10 @@ int main() try {
               std::abs(servo::gauss_linking(a, true, b, true)));
 
   // tsrrt: a tube around the loop, and the API refusing a request without a robot.
-  std::vector<Eigen::Vector3d> vertices;
-  std::vector<Eigen::Vector3i> triangles;
-  tsrrt::loop_tube(a, 0.05, vertices, triangles);
-  std::printf("loop tube: %zu vertices, %zu triangles\n", vertices.size(), triangles.size());
+  TriangleMesh tube;
+  tsrrt::loop_tube(a, 0.05, tube);
+  std::printf("loop tube: %zu vertices, %zu triangles\n", tube.vertices.size(),
+              tube.triangles.size());
   try {
     tsrrt::plan_clasp(tsrrt::ClaspRequest{});
     std::printf("plan_clasp without a robot: accepted\n");
