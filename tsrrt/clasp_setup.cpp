@@ -216,6 +216,10 @@ ClaspResult plan_clasp(const ClaspRequest& request) {
   if (!request.robot) throw InputError(prefix + "the request has no robot");
   if (request.goal_linking && !(*request.goal_linking > 0.0 && *request.goal_linking <= 1.0))
     throw InputError(prefix + "goal_linking must be in (0, 1]");
+  if (request.perception.finger_thickness != 0.0 || request.perception.closed_aperture != 0.0)
+    throw InputError(prefix +
+                     "perception.finger_thickness and closed_aperture come from the robot "
+                     "(robots::hand_size()): leave them 0");
   const robots::RobotModel& model = *request.robot;
   const Say say = [&](const std::string& m) {
     if (request.progress) request.progress(m);

@@ -70,8 +70,9 @@ struct ClaspRequest {
   /// both modes; none: the robot's own (RobotModel::vlink_goal).
   std::optional<double> goal_linking;
 
-  /// The stages' options. The hand's sizes (finger thickness, closed aperture) in `perception`
-  /// are replaced by the robot's own (robots::hand_size()): loops are chosen for this hand.
+  /// The stages' options. The hand's sizes (finger thickness, closed aperture) come from the
+  /// robot (robots::hand_size()): loops are chosen for this hand; set in `perception`, they are
+  /// an error.
   /// perception.targets is the number of clasp targets on the chosen loop.
   perception::PerceptionOptions perception;
   servo::ControllerParameters controller;

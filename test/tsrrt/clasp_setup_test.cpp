@@ -242,6 +242,10 @@ TEST(ClaspSetup, MalformedRequestsThrow) {
     bad_goal.goal_linking = goal;
     EXPECT_THROW(plan_clasp(bad_goal), InputError) << goal;
   }
+  // The hand's sizes come from the robot: setting them too is a conflict, not an override.
+  tsrrt::ClaspRequest sized = request_for(purse());
+  sized.perception.finger_thickness = 0.02;
+  EXPECT_THROW(plan_clasp(sized), InputError);
 
   // A box around the whole robot: the start configuration is in collision.
   tsrrt::ClaspRequest boxed = request_for(purse());
