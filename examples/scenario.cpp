@@ -395,8 +395,10 @@ Scenario read_scenario(const YamlField& root, const std::string& path,
     r.fail("robot", "missing (a built-in robot name or a hand-description file)");
   s.robot = r.text("robot");
   const std::vector<std::string> builtin = robots::builtin_robots();
+  // A description file by its absolute path: result.json records it, and `verify` reads it back
+  // from any directory.
   if (std::find(builtin.begin(), builtin.end(), s.robot) == builtin.end()) {
-    s.robot = resolve(dir, s.robot);
+    s.robot = fs::absolute(resolve(dir, s.robot)).lexically_normal().string();
   }
   s.start = r.numbers("start");
   s.seed = static_cast<std::uint64_t>(r.integer("seed", 1, 0, 2147483647));

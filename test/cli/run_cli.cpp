@@ -7,6 +7,7 @@
 
 #include "examples/result_file.hpp"
 #include "robots/collision_world.hpp"
+#include "robots/embedded_models.hpp"
 #include "robots/kinematics.hpp"
 #include "test/support/cli_runner.hpp"
 
@@ -361,6 +362,30 @@ TEST(Planner, UnreachableLoopIsExitOneWithAReason) {
   expect_connect_outcomes(read_json(dir.file("out/result.json"))["connect_outcomes"]);
   EXPECT_TRUE(std::filesystem::exists(dir.file("out/result.json")));
   EXPECT_TRUE(std::filesystem::exists(dir.file("out/tree.png")));
+}
+
+// A clasp planned with a robot description file, named relative to the scenario run from its own
+// folder, is verified from another folder: result.json names the description by its absolute path.
+TEST(Verify, WorksFromAnotherFolderWithARobotFile) {
+  TempDir dir;
+  std::filesystem::create_directories(dir.file("work/robot"));
+  dir.write("work/robot/kr5_armar3.urdf", robots::embedded_model_file("kr5_armar3.urdf"));
+  dir.write("work/robot/kr5_armar3.yaml", robots::embedded_model_file("kr5_armar3.yaml"));
+  std::string text = slurp(scenario("purse_1_armar3"));
+  const std::string builtin = "robot: kr5_armar3\n";
+  ASSERT_NE(text.find(builtin), std::string::npos);
+  text.replace(text.find(builtin), builtin.size(), "robot: robot/kr5_armar3.yaml\n");
+  dir.write("work/purse.yaml", text);
+  const CliResult r = run_cli(
+      {"run", "purse.yaml", "--seed", "1", "--no-pictures", "--max-cycles", "2000", "--out", "out"},
+      300, dir.file("work"));
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const std::string robot = read_json(dir.file("work/out/result.json"))["robot"];
+  EXPECT_TRUE(std::filesystem::path(robot).is_absolute()) << robot;
+  const CliResult v =
+      run_cli({"verify", "work/out/result.json", "--sequences", "2", "--motions", "50", "--json"},
+              300, dir.path().string());
+  EXPECT_EQ(v.exit_code, 0) << v.err;
 }
 
 TEST(Verify, BadResultFilesAreExitTwo) {

@@ -29,10 +29,12 @@ inline std::string shell_quote(const std::string& s) {
   return q + "'";
 }
 
-/// Runs `claspplan args...`; a hard timeout guards against hangs.
-inline CliResult run_cli(const std::vector<std::string>& args, int timeout_seconds = 300) {
+/// Runs `claspplan args...` (in the folder `cwd`, if given); a hard timeout guards against hangs.
+inline CliResult run_cli(const std::vector<std::string>& args, int timeout_seconds = 300,
+                         const std::string& cwd = "") {
   TempDir tmp;
-  std::string cmd = "timeout " + std::to_string(timeout_seconds) + " " + shell_quote(CLASPPLAN_EXE);
+  std::string cmd = (cwd.empty() ? std::string() : "cd " + shell_quote(cwd) + " && ") + "timeout " +
+                    std::to_string(timeout_seconds) + " " + shell_quote(CLASPPLAN_EXE);
   for (const auto& a : args) cmd += " " + shell_quote(a);
   cmd += " >" + shell_quote(tmp.file("out")) + " 2>" + shell_quote(tmp.file("err"));
   const int status = std::system(cmd.c_str());
