@@ -61,6 +61,7 @@ int run_robot(const RobotOptions& o) {
   robots::CollisionWorld world(m);
   robots::CollisionReport contact;
   const bool self_collision = world.in_collision(data, &contact);
+  const auto self_contacts = world.self_contacts(data);
   const Eigen::Isometry3d& tool0 = data.link_poses[m.tool_link];
 
   if (o.json) {
@@ -108,6 +109,9 @@ int run_robot(const RobotOptions& o) {
         {"self_collision", self_collision},
     };
     if (self_collision) out["self_collision_pair"] = {contact.first, contact.second};
+    nlohmann::json pairs = nlohmann::json::array();
+    for (const auto& [a, b] : self_contacts) pairs.push_back({a, b});
+    out["self_collision_pairs"] = pairs;
     print_json(out);
     return kOk;
   }
@@ -133,6 +137,10 @@ int run_robot(const RobotOptions& o) {
   }
   std::printf("self-collision: %s\n",
               self_collision ? (contact.first + " / " + contact.second).c_str() : "none");
+  if (self_contacts.size() > 1 || (!self_contacts.empty() && !self_collision)) {
+    std::printf("all links in contact with each other (%zu pairs):\n", self_contacts.size());
+    for (const auto& [a, b] : self_contacts) std::printf("  %s / %s\n", a.c_str(), b.c_str());
+  }
   return kOk;
 }
 

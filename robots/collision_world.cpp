@@ -376,6 +376,21 @@ bool CollisionWorld::in_collision(const RobotData& data, CollisionReport* report
   return impl_->check(data, report);
 }
 
+std::vector<std::pair<std::string, std::string>> CollisionWorld::self_contacts(
+    const RobotData& data) {
+  Impl& m = *impl_;
+  m.check_data(data);
+  m.place_all(data);
+  std::vector<std::pair<std::string, std::string>> out;
+  for (const auto& [a, b] : m.shape_pairs) {
+    const std::pair<std::string, std::string> links{m.model.links[m.shapes[a].link].name,
+                                                    m.model.links[m.shapes[b].link].name};
+    if (std::find(out.begin(), out.end(), links) == out.end() && m.shapes_collide(a, b))
+      out.push_back(links);
+  }
+  return out;
+}
+
 bool CollisionWorld::in_collision(const Eigen::VectorXd& q, CollisionReport* report) {
   if (!q.allFinite()) throw std::invalid_argument(impl_->model.name + ": q is not finite");
   forward_kinematics(impl_->model, q, impl_->data);

@@ -110,6 +110,9 @@ class CollisionWorld {
   // --- Queries (data must come from forward_kinematics with this model) -------------------------
   /// Any contact: robot vs object, robot vs environment, robot vs itself.
   bool in_collision(const RobotData& data, CollisionReport* report = nullptr);
+  /// Every pair of the robot's links in contact with each other (link names, in the order the
+  /// checks meet them, each pair once): all the pairs to allow at once, not one per run.
+  std::vector<std::pair<std::string, std::string>> self_contacts(const RobotData& data);
   /// Runs FK at q first (q.size() == dof, finite).
   bool in_collision(const Eigen::VectorXd& q, CollisionReport* report = nullptr);
 

@@ -110,8 +110,8 @@ void add_actuated_joints(ModelBuild& b) {
     j.link = li;
     j.hand = static_cast<int>(i) >= m.arm_dof;
     if (uj.type == urdf::Joint::CONTINUOUS) {
-      j.lower = -M_PI;  // one turn: a planner needs finite limits
-      j.upper = M_PI;
+      j.lower = -0.5 * kContinuousRange;
+      j.upper = 0.5 * kContinuousRange;
     } else {
       if (!uj.limits) fail(b.urdf_file, "joint '" + uj.name + "' has no <limit>");
       j.lower = uj.limits->lower;
@@ -149,8 +149,12 @@ void read_home(ModelBuild& b, const YamlField& arm) {
     for (int i = 0; i < m.arm_dof; ++i) {
       const Joint& j = m.joints[i];
       m.home[i] = h[i].number();
-      if (m.home[i] < j.lower - 1e-9 || m.home[i] > j.upper + 1e-9)
-        h[i].fail("value for '" + j.name + "' is outside its limits");
+      if (m.home[i] < j.lower - 1e-9 || m.home[i] > j.upper + 1e-9) {
+        std::ostringstream s;
+        s << "value " << m.home[i] << " for '" << j.name << "' is outside its limits [" << j.lower
+          << ", " << j.upper << "]";
+        h[i].fail(s.str());
+      }
     }
   } else {
     m.home = m.clamp(m.home);
@@ -171,8 +175,12 @@ void read_held(ModelBuild& b, const YamlField& hand) {
     if (uj.mimic) key.fail("joint '" + uj.name + "' is a mimic joint");
     const double v = value.number();
     if (uj.limits && uj.type != urdf::Joint::CONTINUOUS &&
-        (v < uj.limits->lower - 1e-9 || v > uj.limits->upper + 1e-9))
-      value.fail("value is outside the joint's limits");
+        (v < uj.limits->lower - 1e-9 || v > uj.limits->upper + 1e-9)) {
+      std::ostringstream s;
+      s << "value " << v << " is outside the joint's limits [" << uj.limits->lower << ", "
+        << uj.limits->upper << "]";
+      value.fail(s.str());
+    }
     b.held[li] = v;
   }
 }

@@ -59,9 +59,13 @@ struct Link {
 };
 
 /// One entry of q.
+/// The range a continuous joint is given: two turns either way, so that any angle a vendor
+/// documents (a home at 4.8 rad, say) lies inside, and a planner still has finite limits.
+constexpr double kContinuousRange = 4.0 * 3.14159265358979323846;
+
 struct Joint {
   std::string name;
-  double lower = 0.0, upper = 0.0;  ///< limits (continuous joints: [-pi, pi])
+  double lower = 0.0, upper = 0.0;  ///< limits (continuous joints: +-kContinuousRange / 2)
   double velocity = 0.0;            ///< URDF velocity limit (rad/s or m/s)
   bool hand = false;                ///< a hand joint (else an arm joint)
   int link = -1;                    ///< the child link of this joint

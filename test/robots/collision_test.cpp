@@ -1,4 +1,5 @@
 // The collision world: boxes, meshes, self-collision, per-link queries and interpolated motions.
+#include <algorithm>
 #include <cmath>
 #include <random>
 #include <string>
@@ -87,6 +88,26 @@ TEST(Collision, KnownSelfCollisions) {
   EXPECT_TRUE(world.in_collision(folded));
   world.set_self_collision(false);
   EXPECT_FALSE(world.in_collision(folded));
+}
+
+// Both at once (the arm folded and the finger flexed): self_contacts lists every pair, each once,
+// where in_collision reports the first.
+TEST(Collision, SelfContactsListsEveryPairAtOnce) {
+  const RobotModel m = load_robot("kr5_sdh");
+  CollisionWorld world(m);
+  Eigen::VectorXd q = m.home;
+  q.head(6) << 0, -150 * kDeg, 160 * kDeg, 0, 0, 0;
+  q[m.joint_index("finger_12_joint")] = 1.5;
+  RobotData data(m);
+  forward_kinematics(m, q, data);
+  const auto pairs = world.self_contacts(data);
+  const auto has = [&](const std::string& a, const std::string& b) {
+    return std::count(pairs.begin(), pairs.end(), std::make_pair(a, b)) == 1;
+  };
+  EXPECT_TRUE(has("link_1", "link_3"));
+  EXPECT_TRUE(has("finger_12_link", "thumb_1_link"));
+  forward_kinematics(m, m.home, data);
+  EXPECT_TRUE(world.self_contacts(data).empty());
 }
 
 TEST(Collision, Boxes) {

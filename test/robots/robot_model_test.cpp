@@ -260,7 +260,10 @@ TEST(RobotModel, BadFilesGiveOneLineReasons) {
        urdf, "joint 'thumb_3_joint' moves but is not listed"},
       {"NaN value", replaced(yaml, "open: -1.0", "open: .nan"), urdf, "must be finite"},
       {"open outside limits", replaced(yaml, "open: -1.0", "open: -2.0"), urdf,
-       "outside its limits"},
+       "outside its limits ["},
+      {"home outside limits",
+       replaced(yaml, "home: [0, -1.5707963267948966", "home: [3.5, -1.5707963267948966"), urdf,
+       "value 3.5 for 'joint_a1' is outside its limits [-2.96706, 2.96706]"},
       {"word for a number", replaced(yaml, "vlink_goal: 0.85", "vlink_goal: high"), urdf,
        "expected a number, got 'high'"},
       {"goal out of range", replaced(yaml, "vlink_goal: 0.85", "vlink_goal: 1.5"), urdf,
@@ -289,6 +292,24 @@ TEST(RobotModel, BadFilesGiveOneLineReasons) {
       EXPECT_NE(reason.find(c.expected), std::string::npos) << c.label << ": " << reason;
     }
   }
+}
+
+// A continuous joint gets two turns either way: a vendor's home at 4.8 rad loads, 7 rad does not,
+// and the message gives the range.
+TEST(RobotModel, ContinuousJointsSpanTwoTurnsEitherWay) {
+  const std::string urdf =
+      replaced(embedded("kr5_sdh.urdf"), "<joint name=\"joint_a1\" type=\"revolute\">",
+               "<joint name=\"joint_a1\" type=\"continuous\">");
+  const std::string yaml = embedded("kr5_sdh.yaml");
+  const std::string home = "home: [0, -1.5707963267948966";
+  const RobotModel m = load_robot_from_text(replaced(yaml, home, "home: [4.8, -1.5707963267948966"),
+                                            urdf, "hand.yaml", "robot.urdf");
+  EXPECT_DOUBLE_EQ(m.joints[0].upper, 0.5 * kContinuousRange);
+  EXPECT_DOUBLE_EQ(m.joints[0].lower, -0.5 * kContinuousRange);
+  EXPECT_DOUBLE_EQ(m.home[0], 4.8);
+  const std::string reason =
+      load_error(replaced(yaml, home, "home: [7, -1.5707963267948966"), urdf);
+  EXPECT_NE(reason.find("outside its limits [-6.28319, 6.28319]"), std::string::npos) << reason;
 }
 
 TEST(RobotModel, EmptyCurveListIsRejected) {
