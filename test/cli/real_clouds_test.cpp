@@ -17,6 +17,11 @@
 #include "robots/robot_model.hpp"
 #include "test/support/cli_runner.hpp"
 #include "test/support/temp_dir.hpp"
+#include "test/support/unseen_space.hpp"
+#include "tsrrt/clasp_problem.hpp"
+#include "tsrrt/clasp_scene.hpp"
+#include "tsrrt/clasp_setup.hpp"
+#include "tsrrt/planner.hpp"
 
 namespace claspplan::test {
 namespace {
@@ -124,6 +129,113 @@ TEST(RealClouds, StereoMugHandlesBackIsUnseen) {
   const double n = static_cast<double>(handle->points.size());
   EXPECT_LT(free_behind / n, 0.2) << free_behind << " of " << n;
   EXPECT_GT(free_in_front / n, 0.8) << free_in_front << " of " << n;  // the map does see space
+}
+
+// The TS-RRT's clasp problem, recording every motion it called free: on a real cloud no plan
+// exists (above), so what is checked against the sensed map is everything the search would have
+// used, every motion of its tree and of its connect attempts.
+class RecordingProblem final : public tsrrt::PlanningProblem {
+ public:
+  explicit RecordingProblem(tsrrt::ClaspProblem& inner) : inner_(inner) {}
+  tsrrt::TaskPoint project(const Eigen::VectorXd& q) override { return inner_.project(q); }
+  Eigen::VectorXd control(const Eigen::VectorXd& q0, const tsrrt::TaskPoint& x0,
+                          const tsrrt::TaskPoint& x1) override {
+    return inner_.control(q0, x0, x1);
+  }
+  bool control_limited() const override { return inner_.control_limited(); }
+  tsrrt::MotionCheck check_motion(const Eigen::VectorXd& q0, const Eigen::VectorXd& q1) override {
+    const tsrrt::MotionCheck c = inner_.check_motion(q0, q1);
+    if (c == tsrrt::MotionCheck::kFree) free_motions.push_back({q0, q1});
+    return c;
+  }
+  bool reached(const tsrrt::TaskPoint& x, const tsrrt::TaskPoint& goal) const override {
+    return inner_.reached(x, goal);
+  }
+  bool sample_configuration(const std::function<std::uint64_t()>& bits,
+                            Eigen::VectorXd& q) override {
+    return inner_.sample_configuration(bits, q);
+  }
+  std::vector<tsrrt::TaskPoint> approaches(int goal) override { return inner_.approaches(goal); }
+
+  std::vector<std::vector<Eigen::VectorXd>> free_motions;
+
+ private:
+  tsrrt::ClaspProblem& inner_;
+};
+
+// Issue 33 on real data: every motion the search on the stereo mug accepted as free, and the
+// closed hand at the nodes nearest the handle, stay out of space the camera did not see, checked
+// point by point inside the robot's shapes against the sensed map (test/support/unseen_space.hpp),
+// not by the planner's own collision world.
+TEST(RealClouds, NoSearchedMotionOrClosedHandEntersUnseenSpace) {
+  const cli::Scenario s = cli::load_scenario(std::string(CLASPPLAN_SCENARIOS) +
+                                             "/clouds/table_scene_mug_stereo_textured_icub.yaml");
+  tsrrt::ClaspRequest request;
+  request.robot = std::make_shared<const robots::RobotModel>(robots::load_robot(s.robot));
+  request.start =
+      Eigen::Map<const Eigen::VectorXd>(s.start.data(), static_cast<Eigen::Index>(s.start.size()));
+  request.object = cli::scenario_inputs(s);
+  request.environment = s.boxes;
+  request.perception = s.perception;
+  request.planning = s.planning;
+  request.seed = s.seed;
+  std::vector<std::vector<Eigen::VectorXd>> motions;
+  std::vector<Eigen::VectorXd> closed;
+  int nodes = 0;
+  double nearest = 0.0;  // the hand's closest approach to a clasp target, metres
+  request.search = [&](const tsrrt::ClaspScene& scene, tsrrt::ClaspResult& r) {
+    tsrrt::ClaspProblem inner(scene.controller, scene.world, 0.65, 0.0,
+                              scene.planning.collision_resolution);
+    RecordingProblem problem(inner);
+    tsrrt::PlannerParameters p = scene.planning.planner;
+    p.max_cycles = 20;
+    p.time_limit = 0.0;
+    std::vector<tsrrt::TaskPoint> goals;
+    for (const auto& g : scene.controller.targets()) goals.push_back({g.point, 1.0});
+    const tsrrt::PlanResult plan = tsrrt::build_ts_rrt(problem, r.start, goals, p);
+    nodes = plan.nodes;
+    nearest = 1e9;
+    motions = std::move(problem.free_motions);
+    // The fingers closed at the three motion ends nearest a clasp target (the handle).
+    const auto to_handle = [&](const Eigen::VectorXd& q) {
+      const Eigen::Vector3d hand = scene.controller.project(q).position;
+      double d = 1e9;
+      for (const auto& g : goals) d = std::min(d, (g.position - hand).norm());
+      return d;
+    };
+    std::vector<std::pair<double, Eigen::VectorXd>> ends;
+    for (const auto& m : motions) ends.emplace_back(to_handle(m.back()), m.back());
+    for (const auto& e : ends) nearest = std::min(nearest, e.first);
+    std::stable_sort(ends.begin(), ends.end(),
+                     [](const auto& a, const auto& b) { return a.first < b.first; });
+    tsrrt::ClaspTimings timings;
+    for (std::size_t i = 0; i < std::min<std::size_t>(3, ends.size()); ++i) {
+      const Eigen::VectorXd& q = ends[i].second;
+      const tsrrt::ClaspCandidate c = tsrrt::close_and_check(scene, q, timings, false);
+      std::vector<Eigen::VectorXd> hand{q};
+      hand.insert(hand.end(), c.approach.begin(), c.approach.end());
+      if (c.q_closed.size() > 0) hand.push_back(c.q_closed);
+      motions.push_back(hand);
+      closed.push_back(c.q_closed);
+    }
+  };
+  const tsrrt::ClaspResult r = tsrrt::plan_clasp(request);
+  ASSERT_TRUE(r.object.sensed);
+  ASSERT_GT(nodes, 20) << r.reason;
+  ASSERT_GT(motions.size(), 100u);
+  ASSERT_EQ(closed.size(), 3u);
+  EXPECT_LT(nearest, 0.2) << "the search never came near the handle";
+  const double resolution = request.planning.collision_resolution;
+  UnseenSpaceProbe probe(*request.robot, *r.object.sensed);
+  for (std::size_t i = 0; i < motions.size(); ++i) {
+    const auto reached = probe.first_in(motions[i], resolution);
+    ASSERT_FALSE(reached) << "motion " << i << " of " << motions.size() << ": " << *reached;
+  }
+  // The check can fail: the closed hands are in the map's region, and in a map without the view
+  // they are in unknown space.
+  const perception::SensedSpace blind({}, r.object.sensed->region());
+  for (const Eigen::VectorXd& q : closed)
+    EXPECT_TRUE(first_in_unseen_space(*request.robot, {q}, blind, resolution));
 }
 
 }  // namespace

@@ -58,45 +58,78 @@ inline std::vector<Eigen::Vector3d> shape_interior(const robots::CollisionShape&
   return out;
 }
 
-/// The first point of a moving link's shape that lies in an unknown voxel of `space`, along the
-/// waypoints interpolated so that no joint moves more than `resolution` between samples; a line
-/// naming the link and the sample, or nothing. Links that no joint moves (the base) are skipped.
+/// The robot's moving shapes filled with points, checked against a sensed map: built once,
+/// then any number of motions.
+class UnseenSpaceProbe {
+ public:
+  UnseenSpaceProbe(const robots::RobotModel& model, const perception::SensedSpace& space,
+                   double step = 0.004)
+      : model_(model), space_(space), data_(model), moves_(model.links.size(), false) {
+    for (std::size_t l = 0; l < model.links.size(); ++l) {
+      const robots::Link& link = model.links[l];
+      moves_[l] = (link.parent >= 0 && moves_[link.parent]) ||
+                  (link.type != robots::JointType::kFixed && link.q_index >= 0);
+    }
+    for (const auto& s : model.shapes) {
+      interior_.push_back(shape_interior(s, step));
+      double r = 0.0;
+      for (const auto& p : interior_.back()) r = std::max(r, p.norm());
+      reach_.push_back(r);
+    }
+  }
+
+  /// The first point of a moving link's shape that lies in an unknown voxel, along the waypoints
+  /// interpolated so that no joint moves more than `resolution` between samples; a line naming
+  /// the link and the sample, or nothing. Links that no joint moves (the base) are skipped, and
+  /// so are shapes wholly outside the map's region (unknown there is not near the object).
+  std::optional<std::string> first_in(const std::vector<Eigen::VectorXd>& waypoints,
+                                      double resolution) {
+    for (std::size_t w = 0; w < waypoints.size(); ++w) {
+      const Eigen::VectorXd& a = waypoints[w];
+      const Eigen::VectorXd& b = w + 1 < waypoints.size() ? waypoints[w + 1] : a;
+      const int samples =
+          std::max(1, static_cast<int>(std::ceil((b - a).cwiseAbs().maxCoeff() / resolution)));
+      for (int k = 0; k < samples; ++k) {
+        const Eigen::VectorXd q = a + (b - a) * (static_cast<double>(k) / samples);
+        if (auto hit = first_at(q))
+          return *hit + " at waypoint " + std::to_string(w) + " (+" + std::to_string(k) + "/" +
+                 std::to_string(samples) + ")";
+      }
+    }
+    return std::nullopt;
+  }
+
+ private:
+  std::optional<std::string> first_at(const Eigen::VectorXd& q) {
+    robots::forward_kinematics(model_, q, data_);
+    for (std::size_t s = 0; s < model_.shapes.size(); ++s) {
+      const robots::CollisionShape& shape = model_.shapes[s];
+      if (!moves_[shape.link]) continue;
+      const Eigen::Isometry3d pose = data_.link_poses[shape.link] * shape.origin;
+      if (space_.region().exteriorDistance(pose.translation()) > reach_[s]) continue;
+      for (const auto& p : interior_[s]) {
+        const Eigen::Vector3d x = pose * p;
+        if (space_.region().contains(x) && space_.at(x) == perception::Sensed::kUnknown)
+          return model_.links[shape.link].name + " reaches (" + std::to_string(x.x()) + ", " +
+                 std::to_string(x.y()) + ", " + std::to_string(x.z()) + ")";
+      }
+    }
+    return std::nullopt;
+  }
+
+  const robots::RobotModel& model_;
+  const perception::SensedSpace& space_;
+  robots::RobotData data_;
+  std::vector<bool> moves_;
+  std::vector<std::vector<Eigen::Vector3d>> interior_;
+  std::vector<double> reach_;  // the farthest interior point from the shape's origin
+};
+
+/// One motion through UnseenSpaceProbe::first_in.
 inline std::optional<std::string> first_in_unseen_space(
     const robots::RobotModel& model, const std::vector<Eigen::VectorXd>& waypoints,
     const perception::SensedSpace& space, double resolution, double step = 0.004) {
-  std::vector<bool> moves(model.links.size(), false);
-  for (std::size_t l = 0; l < model.links.size(); ++l) {
-    const robots::Link& link = model.links[l];
-    moves[l] = (link.parent >= 0 && moves[link.parent]) ||
-               (link.type != robots::JointType::kFixed && link.q_index >= 0);
-  }
-  std::vector<std::vector<Eigen::Vector3d>> interior;
-  for (const auto& s : model.shapes) interior.push_back(shape_interior(s, step));
-  robots::RobotData data(model);
-  for (std::size_t w = 0; w < waypoints.size(); ++w) {
-    const Eigen::VectorXd& a = waypoints[w];
-    const Eigen::VectorXd& b = w + 1 < waypoints.size() ? waypoints[w + 1] : a;
-    const int samples =
-        std::max(1, static_cast<int>(std::ceil((b - a).cwiseAbs().maxCoeff() / resolution)));
-    for (int k = 0; k < samples; ++k) {
-      const Eigen::VectorXd q = a + (b - a) * (static_cast<double>(k) / samples);
-      robots::forward_kinematics(model, q, data);
-      for (std::size_t s = 0; s < model.shapes.size(); ++s) {
-        const robots::CollisionShape& shape = model.shapes[s];
-        if (!moves[shape.link]) continue;
-        const Eigen::Isometry3d pose = data.link_poses[shape.link] * shape.origin;
-        for (const auto& p : interior[s]) {
-          const Eigen::Vector3d x = pose * p;
-          if (space.region().contains(x) && space.at(x) == perception::Sensed::kUnknown)
-            return model.links[shape.link].name + " at waypoint " + std::to_string(w) + " (+" +
-                   std::to_string(k) + "/" + std::to_string(samples) + ") reaches (" +
-                   std::to_string(x.x()) + ", " + std::to_string(x.y()) + ", " +
-                   std::to_string(x.z()) + ")";
-        }
-      }
-    }
-  }
-  return std::nullopt;
+  return UnseenSpaceProbe(model, space, step).first_in(waypoints, resolution);
 }
 
 }  // namespace claspplan::test
