@@ -11,6 +11,7 @@ packages=(
   libcli11-dev nlohmann-json3-dev libyaml-cpp-dev   # command line, JSON output, YAML files
   libompl-dev                            # OMPL's RRTConnect: the benchmark's two-phase baseline
   liboctomap-dev                         # the sensed space as an OcTree, collided by FCL (robots)
+  libassimp-dev                          # COLLADA (.dae) collision meshes of public URDFs (robots)
   libgtest-dev libbenchmark-dev          # tests and kernel benchmarks
   clang-14 libclang-rt-14-dev            # libFuzzer targets (test/fuzz, .ci/fuzz.sh)
 )

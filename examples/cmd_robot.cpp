@@ -63,6 +63,12 @@ int run_robot(const RobotOptions& o) {
   const bool self_collision = world.in_collision(data, &contact);
   const auto self_contacts = world.self_contacts(data);
   const Eigen::Isometry3d& tool0 = data.link_poses[m.tool_link];
+  std::size_t meshes = 0, triangles = 0;
+  for (const auto& s : m.shapes)
+    if (s.type == robots::CollisionShape::Type::kMesh) {
+      ++meshes;
+      triangles += s.mesh->triangles.size();
+    }
 
   if (o.json) {
     nlohmann::json joints = nlohmann::json::array();
@@ -107,6 +113,10 @@ int run_robot(const RobotOptions& o) {
         {"v_swd", vec(robots::vector_direction(data, m.v_swd))},
         {"vlink_goal", m.vlink_goal},
         {"self_collision", self_collision},
+        {"shapes", m.shapes.size()},
+        {"mesh_shapes", meshes},
+        {"mesh_triangles", triangles},
+        {"warnings", m.warnings},
     };
     if (self_collision) out["self_collision_pair"] = {contact.first, contact.second};
     nlohmann::json pairs = nlohmann::json::array();
@@ -118,6 +128,9 @@ int run_robot(const RobotOptions& o) {
 
   std::printf("%s (%s): %d actuated joints, %d arm + %d hand\n", m.name.c_str(), m.source.c_str(),
               m.dof(), m.arm_dof, m.hand_dof);
+  for (const auto& w : m.warnings) std::printf("warning: %s\n", w.c_str());
+  std::printf("collision shapes: %zu (%zu meshes, %zu triangles)\n", m.shapes.size(), meshes,
+              triangles);
   std::printf("  %-3s %-20s %-4s %10s %10s %10s\n", "#", "joint", "part", "lower", "upper", "q");
   for (int i = 0; i < m.dof(); ++i) {
     const auto& j = m.joints[i];

@@ -26,6 +26,8 @@ TriangleMesh shape_mesh(const robots::CollisionShape& s) {
       return cylinder_mesh(s.radius, s.length);
     case Type::kCapsule:
       return capsule_mesh(s.radius, s.length);
+    case Type::kMesh:
+      return *s.mesh;
   }
   return {};
 }

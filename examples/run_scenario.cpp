@@ -161,6 +161,7 @@ RunOutcome run_scenario(const Scenario& scenario, const RunOptions& options) {
   if (options.seed) s.seed = *options.seed;  // the depth noise's (the stages': the request's)
   const auto robot = std::make_shared<const robots::RobotModel>(robots::load_robot(s.robot));
   const robots::RobotModel& model = *robot;
+  for (const auto& w : model.warnings) say("warning: " + w);
   model.complete_q(s.start);  // a bad start is reported before any file is read
   json timing;
   json result = {{"scenario", s.path},

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <stdexcept>
 
+#include <fcl/geometry/bvh/BVH_model.h>
 #include <fcl/geometry/octree/octree.h>
 #include <fcl/geometry/shape/box.h>
 #include <fcl/geometry/shape/capsule.h>
@@ -19,10 +20,12 @@
 namespace claspplan::robots {
 namespace {
 
-// Closed-form half extents of a primitive's axis-aligned box, for a shape rotated by R.
+// Closed-form half extents of a primitive's axis-aligned box, for a shape rotated by R (a mesh:
+// its own box's).
 struct Primitive {
   CollisionShape::Type type;
-  Eigen::Vector3d half{0, 0, 0};  // box half sizes
+  Eigen::Vector3d centre{0, 0, 0};  // mesh: its box's centre in the shape frame
+  Eigen::Vector3d half{0, 0, 0};    // box (mesh: its box's) half sizes
   double radius = 0.0;
   double half_length = 0.0;  // cylinder / capsule: half of the axis length
 
@@ -31,6 +34,7 @@ struct Primitive {
     Eigen::Vector3d e = Eigen::Vector3d::Zero();
     switch (type) {
       case CollisionShape::Type::kBox:
+      case CollisionShape::Type::kMesh:
         e = R.cwiseAbs() * half;
         break;
       case CollisionShape::Type::kSphere:
@@ -47,7 +51,8 @@ struct Primitive {
         break;
       }
     }
-    return {tf.translation() - e, tf.translation() + e};
+    const Eigen::Vector3d c = tf * centre;
+    return {c - e, c + e};
   }
 };
 
@@ -75,6 +80,15 @@ Geometry make_geometry(const CollisionShape& s) {
       return std::make_shared<fcl::Cylinderd>(s.radius, s.length);
     case CollisionShape::Type::kCapsule:
       return std::make_shared<fcl::Capsuled>(s.radius, s.length);
+    case CollisionShape::Type::kMesh: {
+      auto bvh = std::make_shared<fcl::BVHModel<fcl::OBBRSSd>>();
+      std::vector<fcl::Triangle> triangles;
+      for (const auto& t : s.mesh->triangles) triangles.emplace_back(t[0], t[1], t[2]);
+      bvh->beginModel();
+      bvh->addSubModel(s.mesh->vertices, triangles);
+      bvh->endModel();
+      return bvh;
+    }
   }
   throw std::logic_error("unknown collision shape type");
 }
@@ -83,6 +97,11 @@ Primitive make_primitive(const CollisionShape& s) {
   Primitive p;
   p.type = s.type;
   p.half = 0.5 * s.size;
+  if (s.type == CollisionShape::Type::kMesh) {
+    const Eigen::AlignedBox3d b = bounds(*s.mesh);
+    p.centre = b.center();
+    p.half = 0.5 * b.sizes();
+  }
   p.radius = s.radius;
   p.half_length = 0.5 * s.length;
   return p;

@@ -244,11 +244,16 @@ void mark_support_and_hand(ModelBuild& b) {
     if (static_cast<int>(i) == m.hand_base_link) l.hand = true;
     if (l.type != JointType::kFixed && l.q_index >= 0) l.support.push_back(static_cast<int>(i));
   }
+  // The joint into the hand's base link moves the whole hand: an arm joint (fingers that hang
+  // directly off the arm's last link name that link as the hand's base).
   for (int i = 0; i < m.dof(); ++i) {
-    if (m.joints[i].hand != m.links[m.joints[i].link].hand) {
-      fail(b.source, "joint '" + m.joints[i].name + "' is " +
-                         (m.joints[i].hand ? "a hand joint but not below hand.base_link"
-                                           : "an arm joint but below hand.base_link"));
+    const int link = m.joints[i].link;
+    if (m.joints[i].hand != (m.links[link].hand && link != m.hand_base_link)) {
+      fail(b.source,
+           "joint '" + m.joints[i].name + "' is " +
+               (m.joints[i].hand ? "a hand joint but not below hand.base_link (its child link '" +
+                                       m.links[link].name + "')"
+                                 : "an arm joint but below hand.base_link"));
     }
   }
 }

@@ -13,11 +13,13 @@
 namespace claspplan::robots {
 namespace {
 
-// The diameter of the circle around a shape's cross-section, across its longest axis.
+// The diameter of the circle around a shape's cross-section, across its longest axis (a mesh:
+// its box's, in the mesh's frame).
 double cross_section(const CollisionShape& s) {
   switch (s.type) {
-    case CollisionShape::Type::kBox: {
-      Eigen::Vector3d e = s.size;
+    case CollisionShape::Type::kBox:
+    case CollisionShape::Type::kMesh: {
+      Eigen::Vector3d e = s.type == CollisionShape::Type::kBox ? s.size : bounds(*s.mesh).sizes();
       std::sort(e.data(), e.data() + 3);
       return std::hypot(e[0], e[1]);
     }

@@ -25,8 +25,51 @@ const char* shape_type_name(CollisionShape::Type type) {
       return "cylinder";
     case CollisionShape::Type::kCapsule:
       return "capsule";
+    case CollisionShape::Type::kMesh:
+      return "mesh";
   }
   return "unknown";
+}
+
+Eigen::AlignedBox3d shape_bounds(const CollisionShape& s) {
+  using Type = CollisionShape::Type;
+  Eigen::Vector3d half = Eigen::Vector3d::Zero();
+  switch (s.type) {
+    case Type::kBox:
+      half = 0.5 * s.size;
+      break;
+    case Type::kSphere:
+      half.setConstant(s.radius);
+      break;
+    case Type::kCylinder:
+    case Type::kCapsule:
+      half = Eigen::Vector3d(s.radius, s.radius,
+                             0.5 * s.length + (s.type == Type::kCapsule ? s.radius : 0.0));
+      break;
+    case Type::kMesh:
+      return bounds(*s.mesh);
+  }
+  return {-half, half};
+}
+
+double shape_reach(const CollisionShape& s) {
+  using Type = CollisionShape::Type;
+  switch (s.type) {
+    case Type::kBox:
+      return 0.5 * s.size.norm();
+    case Type::kSphere:
+      return s.radius;
+    case Type::kCylinder:
+      return std::hypot(s.radius, 0.5 * s.length);
+    case Type::kCapsule:
+      return s.radius + 0.5 * s.length;
+    case Type::kMesh: {
+      double r = 0.0;
+      for (const auto& v : s.mesh->vertices) r = std::max(r, v.norm());
+      return r;
+    }
+  }
+  return 0.0;
 }
 
 // ---------------------------------------------------------------------------------------------

@@ -11,6 +11,7 @@
 // leader and joints listed under `hand.held` stay at their value; neither is in q.
 #pragma once
 
+#include <memory>
 #include <string>
 #include <utility>
 #include <vector>
@@ -19,24 +20,34 @@
 #include <Eigen/Geometry>
 
 #include "core/input_error.hpp"
+#include "core/mesh.hpp"
 
 namespace claspplan::robots {
 
 /// How a URDF joint moves its child link.
 enum class JointType { kFixed, kRevolute, kPrismatic };
 
-/// A primitive collision shape of a link (from the URDF <collision> elements). A URDF cylinder
-/// with a sphere of its radius centred on each end cap, in the same link, is merged into a capsule.
+/// A collision shape of a link (from the URDF <collision> elements). A URDF cylinder with a sphere
+/// of its radius centred on each end cap, in the same link, is merged into a capsule. A URDF mesh
+/// (robots/mesh_resources.hpp) is a triangle mesh, checked as FCL's bounding-volume tree.
 struct CollisionShape {
-  enum class Type { kBox, kSphere, kCylinder, kCapsule };
+  enum class Type { kBox, kSphere, kCylinder, kCapsule, kMesh };
   Type type = Type::kBox;
   int link = -1;                  ///< index into RobotModel::links
   Eigen::Isometry3d origin;       ///< shape frame in the link frame (cylinder / capsule axis = z)
   Eigen::Vector3d size{0, 0, 0};  ///< box: full edge lengths
   double radius = 0.0;            ///< sphere, cylinder, capsule
   double length = 0.0;            ///< cylinder: full length; capsule: length of the axis segment
+  /// mesh: its triangles in the shape's frame, scaled (shared by the model's copies).
+  std::shared_ptr<const TriangleMesh> mesh;
+  std::string source;  ///< mesh: the file it was read from
 };
-const char* shape_type_name(CollisionShape::Type type);  // "box", "sphere", "cylinder", "capsule"
+/// "box", "sphere", "cylinder", "capsule", "mesh".
+const char* shape_type_name(CollisionShape::Type type);
+/// The shape's box in its own frame (a mesh's: its vertices' bounds).
+Eigen::AlignedBox3d shape_bounds(const CollisionShape& s);
+/// The radius of the smallest sphere about the shape frame's origin that holds the shape.
+double shape_reach(const CollisionShape& s);
 
 /// A link and the joint that connects it to its parent. Links are stored parents first.
 struct Link {
@@ -114,6 +125,9 @@ struct RobotModel {
   int dof() const { return static_cast<int>(joints.size()); }
 
   std::vector<CollisionShape> shapes;
+  /// What loading skipped, one line each (placeholder geometry: a zero-size box, sphere,
+  /// cylinder or mesh scale in the URDF is no shape).
+  std::vector<std::string> warnings;
   /// Link pairs (i < j) excluded from self-collision checks besides adjacent links (hand
   /// description `collision.allowed_pairs`).
   std::vector<std::pair<int, int>> allowed_pairs;

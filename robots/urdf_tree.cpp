@@ -1,11 +1,16 @@
-// The URDF part of a robot model: parsing (urdfdom), the link tree and the collision shapes.
+// The URDF part of a robot model: parsing (urdfdom), the link tree and the collision shapes
+// (primitives and meshes; placeholder geometry skipped with a warning).
 #include <cmath>
+#include <map>
+#include <memory>
 #include <mutex>
+#include <sstream>
 #include <vector>
 
 #include <console_bridge/console.h>
 
 #include "core/input_error.hpp"
+#include "robots/mesh_resources.hpp"
 #include "robots/robot_model_detail.hpp"
 
 namespace claspplan::robots::robot_model_detail {
@@ -41,10 +46,89 @@ bool finite(const Eigen::Isometry3d& t) {
   return t.matrix().allFinite();
 }
 
+// Reads the meshes of one URDF once each (links often share a file) and records what it skips.
+struct ShapeReader {
+  const std::string& urdf_file;
+  std::vector<std::string>& warnings;
+  std::map<std::string, std::shared_ptr<const TriangleMesh>> meshes;  // by path and scale
+
+  void skip(const urdf::Link& link, const std::string& what) {
+    warnings.push_back(urdf_file + ": link '" + link.name + "': " + what +
+                       ": placeholder geometry, skipped");
+  }
+
+  // The mesh shape, or false for a placeholder (no file name, a zero scale).
+  bool mesh(const urdf::Link& link, const urdf::Mesh& m, CollisionShape& s) {
+    const Eigen::Vector3d scale(m.scale.x, m.scale.y, m.scale.z);
+    if (!scale.allFinite()) fail(urdf_file, "link '" + link.name + "': mesh scale is not finite");
+    if (m.filename.empty() || (scale.array() == 0.0).any()) {
+      skip(link, m.filename.empty() ? "mesh without a file name" : "mesh scaled to zero");
+      return false;
+    }
+    std::string path;
+    try {
+      path = resolve_mesh_uri(m.filename, urdf_file);
+    } catch (const InputError& e) {
+      fail(urdf_file, "link '" + link.name + "': " + e.what());
+    }
+    std::ostringstream key;
+    key << path << ' ' << scale.x() << ' ' << scale.y() << ' ' << scale.z();
+    auto& cached = meshes[key.str()];
+    if (!cached) {
+      TriangleMesh mesh = read_mesh_resource(path);
+      for (auto& v : mesh.vertices) v = v.cwiseProduct(scale);
+      if (scale.prod() < 0.0)  // mirrored: keep the triangles facing out
+        for (auto& t : mesh.triangles) std::swap(t[1], t[2]);
+      cached = std::make_shared<const TriangleMesh>(std::move(mesh));
+    }
+    s.type = CollisionShape::Type::kMesh;
+    s.mesh = cached;
+    s.source = path;
+    return true;
+  }
+
+  // The primitive or mesh shape of one <collision>, or false for placeholder geometry: a zero
+  // size is a placeholder (some public URDFs carry them), a negative or non-finite one an error.
+  bool shape(const urdf::Link& link, const urdf::Geometry& g, CollisionShape& s) {
+    const auto sizes = [&](const Eigen::VectorXd& v, const std::string& what) {
+      if (!v.allFinite() || (v.array() < 0).any())
+        fail(urdf_file, "link '" + link.name + "': " + what + " must be finite and > 0");
+      if ((v.array() == 0).any()) {
+        skip(link, what + " zero");
+        return false;
+      }
+      return true;
+    };
+    switch (g.type) {
+      case urdf::Geometry::BOX: {
+        const auto& b = static_cast<const urdf::Box&>(g);
+        s.type = CollisionShape::Type::kBox;
+        s.size = Eigen::Vector3d(b.dim.x, b.dim.y, b.dim.z);
+        return sizes(s.size, "box sizes");
+      }
+      case urdf::Geometry::SPHERE: {
+        s.type = CollisionShape::Type::kSphere;
+        s.radius = static_cast<const urdf::Sphere&>(g).radius;
+        return sizes(Eigen::Matrix<double, 1, 1>(s.radius), "sphere radius");
+      }
+      case urdf::Geometry::CYLINDER: {
+        const auto& cy = static_cast<const urdf::Cylinder&>(g);
+        s.type = CollisionShape::Type::kCylinder;
+        s.radius = cy.radius;
+        s.length = cy.length;
+        return sizes(Eigen::Vector2d(s.radius, s.length), "cylinder radius and length");
+      }
+      case urdf::Geometry::MESH:
+        return mesh(link, static_cast<const urdf::Mesh&>(g), s);
+    }
+    fail(urdf_file, "link '" + link.name + "': unknown collision geometry type");
+  }
+};
+
 // Converts the URDF <collision> elements of one link; merges cylinder + two end spheres into a
 // capsule (URDF has no capsule primitive).
-std::vector<CollisionShape> link_shapes(const urdf::Link& link, int index,
-                                        const std::string& file) {
+std::vector<CollisionShape> link_shapes(const urdf::Link& link, int index, ShapeReader& reader) {
+  const std::string& file = reader.urdf_file;
   std::vector<CollisionShape> shapes;
   for (const auto& c : link.collision_array) {
     if (!c || !c->geometry) continue;
@@ -52,38 +136,7 @@ std::vector<CollisionShape> link_shapes(const urdf::Link& link, int index,
     s.link = index;
     s.origin = to_isometry(c->origin);
     if (!finite(s.origin)) fail(file, "link '" + link.name + "': collision origin is not finite");
-    switch (c->geometry->type) {
-      case urdf::Geometry::BOX: {
-        const auto& b = static_cast<const urdf::Box&>(*c->geometry);
-        s.type = CollisionShape::Type::kBox;
-        s.size = Eigen::Vector3d(b.dim.x, b.dim.y, b.dim.z);
-        if (!s.size.allFinite() || (s.size.array() <= 0).any())
-          fail(file, "link '" + link.name + "': box sizes must be finite and > 0");
-        break;
-      }
-      case urdf::Geometry::SPHERE: {
-        const auto& sp = static_cast<const urdf::Sphere&>(*c->geometry);
-        s.type = CollisionShape::Type::kSphere;
-        s.radius = sp.radius;
-        if (!std::isfinite(s.radius) || s.radius <= 0)
-          fail(file, "link '" + link.name + "': sphere radius must be finite and > 0");
-        break;
-      }
-      case urdf::Geometry::CYLINDER: {
-        const auto& cy = static_cast<const urdf::Cylinder&>(*c->geometry);
-        s.type = CollisionShape::Type::kCylinder;
-        s.radius = cy.radius;
-        s.length = cy.length;
-        if (!std::isfinite(s.radius) || s.radius <= 0 || !std::isfinite(s.length) || s.length <= 0)
-          fail(file, "link '" + link.name + "': cylinder radius and length must be finite and > 0");
-        break;
-      }
-      default:
-        fail(file,
-             "link '" + link.name +
-                 "': only box, sphere and cylinder collision geometry is supported (no meshes)");
-    }
-    shapes.push_back(s);
+    if (reader.shape(link, *c->geometry, s)) shapes.push_back(s);
   }
   // Capsule merge.
   std::vector<bool> used(shapes.size(), false);
@@ -119,8 +172,9 @@ std::vector<CollisionShape> link_shapes(const urdf::Link& link, int index,
 }
 
 // Appends link l (child of parent) and, depth-first, its subtree.
-void add_subtree(const urdf::Link& l, int parent, const std::string& urdf_file, RobotModel& m,
+void add_subtree(const urdf::Link& l, int parent, ShapeReader& reader, RobotModel& m,
                  UrdfJoints& joints) {
+  const std::string& urdf_file = reader.urdf_file;
   Link link;
   link.name = l.name;
   link.parent = parent;
@@ -155,11 +209,11 @@ void add_subtree(const urdf::Link& l, int parent, const std::string& urdf_file, 
   }
   const int index = static_cast<int>(m.links.size());
   m.links.push_back(link);
-  for (const auto& s : link_shapes(l, index, urdf_file)) {
+  for (const auto& s : link_shapes(l, index, reader)) {
     m.links[index].shapes.push_back(static_cast<int>(m.shapes.size()));
     m.shapes.push_back(s);
   }
-  for (const auto& child : l.child_links) add_subtree(*child, index, urdf_file, m, joints);
+  for (const auto& child : l.child_links) add_subtree(*child, index, reader, m, joints);
 }
 
 }  // namespace
@@ -190,7 +244,8 @@ UrdfJoints read_urdf_tree(const urdf::ModelInterface& urdf, const std::string& u
   const auto urdf_root = urdf.getRoot();
   if (!urdf_root) fail(urdf_file, "the URDF has no root link");
   UrdfJoints joints;
-  add_subtree(*urdf_root, -1, urdf_file, m, joints);
+  ShapeReader reader{urdf_file, m.warnings, {}};
+  add_subtree(*urdf_root, -1, reader, m, joints);
   for (size_t i = 1; i < m.links.size(); ++i)
     joints.link_by_joint[m.links[i].joint] = static_cast<int>(i);
   return joints;

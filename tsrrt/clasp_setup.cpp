@@ -125,7 +125,7 @@ void run_search(const ClaspScene& scene, const Say& say, ClaspResult& r) {
       check.secure ? "verified clasp" : "the clasp failed verification: " + insecure_reason(check);
 }
 
-// Distance to a collision shape from a point in the shape's frame (0 inside).
+// Distance to a collision shape from a point in the shape's frame (0 inside; a mesh: at most).
 double shape_distance(const robots::CollisionShape& s, const Eigen::Vector3d& local) {
   using Type = robots::CollisionShape::Type;
   switch (s.type) {
@@ -142,6 +142,8 @@ double shape_distance(const robots::CollisionShape& s, const Eigen::Vector3d& lo
       const double axial = std::max(0.0, std::abs(local.z()) - 0.5 * s.length);
       return std::hypot(radial, axial);
     }
+    case Type::kMesh:  // its box's: the mesh lies inside it
+      return robots::shape_bounds(s).exteriorDistance(local);
   }
   return 0.0;
 }

@@ -128,21 +128,7 @@ Eigen::AlignedBox3d hand_box(const robots::RobotModel& model, const Eigen::Vecto
   Eigen::AlignedBox3d box;
   for (const robots::CollisionShape& s : model.shapes) {
     if (!model.links[s.link].hand) continue;
-    double r = 0.0;
-    switch (s.type) {
-      case robots::CollisionShape::Type::kBox:
-        r = 0.5 * s.size.norm();
-        break;
-      case robots::CollisionShape::Type::kSphere:
-        r = s.radius;
-        break;
-      case robots::CollisionShape::Type::kCylinder:
-        r = std::hypot(s.radius, 0.5 * s.length);
-        break;
-      case robots::CollisionShape::Type::kCapsule:
-        r = s.radius + 0.5 * s.length;
-        break;
-    }
+    const double r = robots::shape_reach(s);
     const Eigen::Vector3d c = data.link_poses[s.link] * s.origin.translation();
     box.extend(c - Eigen::Vector3d::Constant(r));
     box.extend(c + Eigen::Vector3d::Constant(r));

@@ -235,9 +235,9 @@ TEST(RobotModel, BadFilesGiveOneLineReasons) {
       {"empty URDF", yaml, "", "robot.urdf: the URDF is empty"},
       {"URDF link missing", yaml, replaced(urdf, "<link name=\"finger_13_tip\"/>", ""),
        "robot.urdf: not a valid URDF"},
-      {"mesh geometry", yaml,
+      {"mesh file missing", yaml,
        replaced(urdf, "<box size=\"0.274 0.216 0.211\"/>", "<mesh filename=\"base.stl\"/>"),
-       "no meshes"},
+       "link 'base_link': mesh 'base.stl' not found"},
       {"unknown link in a curve", replaced(yaml, "{link: finger_13_tip}", "{link: finger_99_tip}"),
        urdf, "unknown link 'finger_99_tip'"},
       {"unknown hand joint", replaced(yaml, "name: finger_12_joint", "name: finger_19_joint"), urdf,
@@ -310,6 +310,26 @@ TEST(RobotModel, ContinuousJointsSpanTwoTurnsEitherWay) {
   const std::string reason =
       load_error(replaced(yaml, home, "home: [7, -1.5707963267948966"), urdf);
   EXPECT_NE(reason.find("outside its limits [-6.28319, 6.28319]"), std::string::npos) << reason;
+}
+
+// Fingers that hang directly off the arm's last link: that link is the hand's base, and the joint
+// into it stays an arm joint (issue 35: a Kinova j2s7s300's fingers on j2s7s300_link_7).
+TEST(RobotModel, FingersMayHangOffTheArmsLastLink) {
+  const std::string urdf = embedded("kr5_sdh.urdf");
+  const std::string yaml = embedded("kr5_sdh.yaml");
+  const RobotModel m =
+      load_robot_from_text(replaced(replaced(yaml, "base_link: sdh_base", "base_link: link_6"),
+                                    "tool_link: tool0", "tool_link: link_6"),
+                           urdf, "hand.yaml", "robot.urdf");
+  EXPECT_EQ(m.hand_base_link, m.link_index("link_6"));
+  EXPECT_EQ(m.arm_dof, 6);
+  EXPECT_FALSE(m.joints[m.joint_index("joint_a6")].hand);
+  EXPECT_TRUE(m.links[m.link_index("link_6")].hand);
+  EXPECT_FALSE(m.links[m.link_index("link_5")].hand);
+  // A hand joint above the hand's base is still refused, naming its link.
+  const std::string above =
+      load_error(replaced(yaml, "base_link: sdh_base", "base_link: finger_11_link"), urdf);
+  EXPECT_NE(above.find("a hand joint but not below hand.base_link"), std::string::npos) << above;
 }
 
 TEST(RobotModel, EmptyCurveListIsRejected) {

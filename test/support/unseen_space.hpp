@@ -18,18 +18,17 @@
 namespace claspplan::test {
 
 /// Points on a grid of spacing `step` inside one collision shape, in the shape's frame (the
-/// shape's surface included).
+/// shape's surface included); a mesh's vertices and triangle centres (its surface only).
 inline std::vector<Eigen::Vector3d> shape_interior(const robots::CollisionShape& s, double step) {
   using Type = robots::CollisionShape::Type;
-  Eigen::Vector3d half;
-  if (s.type == Type::kBox) {
-    half = 0.5 * s.size;
-  } else if (s.type == Type::kSphere) {
-    half = Eigen::Vector3d::Constant(s.radius);
-  } else {
-    const double axis = 0.5 * s.length + (s.type == Type::kCapsule ? s.radius : 0.0);
-    half = Eigen::Vector3d(s.radius, s.radius, axis);
+  if (s.type == Type::kMesh) {
+    std::vector<Eigen::Vector3d> out = s.mesh->vertices;
+    for (const auto& t : s.mesh->triangles)
+      out.push_back((s.mesh->vertices[t[0]] + s.mesh->vertices[t[1]] + s.mesh->vertices[t[2]]) /
+                    3.0);
+    return out;
   }
+  const Eigen::Vector3d half = robots::shape_bounds(s).max();
   const auto inside = [&](const Eigen::Vector3d& p) {
     switch (s.type) {
       case Type::kBox:
@@ -42,6 +41,8 @@ inline std::vector<Eigen::Vector3d> shape_interior(const robots::CollisionShape&
         const double z = std::clamp(p.z(), -0.5 * s.length, 0.5 * s.length);
         return (p - Eigen::Vector3d(0, 0, z)).norm() <= s.radius;
       }
+      case Type::kMesh:
+        break;
     }
     return false;
   };

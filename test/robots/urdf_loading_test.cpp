@@ -1,0 +1,246 @@
+// Public URDFs as they are (issue 35): mesh collision geometry (STL, OBJ, COLLADA) found through
+// package://, file:// and relative URIs, and placeholder geometry skipped with a warning. Each
+// case edits one collision element of the built-in SDH's URDF and writes the files it names.
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <random>
+#include <string>
+
+#include <gtest/gtest.h>
+#include <unistd.h>
+
+#include "core/file_io.hpp"
+#include "robots/collision_world.hpp"
+#include "robots/embedded_models.hpp"
+#include "robots/hand_size.hpp"
+#include "robots/robot_model.hpp"
+
+namespace claspplan::robots {
+namespace {
+
+namespace fs = std::filesystem;
+
+const std::string kPalmBox = "<box size=\"0.113 0.122 0.077\"/>";
+
+std::string replaced(std::string text, const std::string& from, const std::string& to) {
+  const size_t at = text.find(from);
+  EXPECT_NE(at, std::string::npos) << "test setup: '" << from << "' not found";
+  if (at != std::string::npos) text.replace(at, from.size(), to);
+  return text;
+}
+
+// A unit cube centred at the origin.
+TriangleMesh unit_cube() {
+  TriangleMesh m;
+  for (int i = 0; i < 8; ++i)
+    m.vertices.emplace_back((i & 1) - 0.5, ((i >> 1) & 1) - 0.5, ((i >> 2) & 1) - 0.5);
+  const int faces[6][4] = {{0, 2, 3, 1}, {4, 5, 7, 6}, {0, 1, 5, 4},
+                           {2, 6, 7, 3}, {0, 4, 6, 2}, {1, 3, 7, 5}};
+  for (const auto& f : faces) {
+    m.triangles.emplace_back(f[0], f[1], f[2]);
+    m.triangles.emplace_back(f[0], f[2], f[3]);
+  }
+  return m;
+}
+
+// The cube stretched to twice its height, as COLLADA in millimetres (<unit meter="0.001">, Z_UP,
+// as CAD exports write it).
+std::string cube_dae() {
+  std::string positions, indices;
+  const TriangleMesh c = unit_cube();
+  for (const auto& v : c.vertices)
+    for (int k = 0; k < 3; ++k)
+      positions += std::to_string((k == 2 ? 2000.0 : 1000.0) * v[k]) + " ";
+  for (const auto& t : c.triangles)
+    for (int k = 0; k < 3; ++k) indices += std::to_string(t[k]) + " ";
+  return R"(<?xml version="1.0" encoding="utf-8"?>
+<COLLADA xmlns="http://www.collada.org/2005/11/COLLADASchema" version="1.4.1">
+  <asset><unit name="millimeter" meter="0.001"/><up_axis>Z_UP</up_axis></asset>
+  <library_geometries><geometry id="cube" name="cube"><mesh>
+    <source id="cube-pos"><float_array id="cube-pos-array" count="24">)" +
+         positions + R"(</float_array>
+      <technique_common><accessor source="#cube-pos-array" count="8" stride="3">
+        <param name="X" type="float"/><param name="Y" type="float"/><param name="Z" type="float"/>
+      </accessor></technique_common></source>
+    <vertices id="cube-vtx"><input semantic="POSITION" source="#cube-pos"/></vertices>
+    <triangles count="12"><input semantic="VERTEX" source="#cube-vtx" offset="0"/><p>)" +
+         indices + R"(</p></triangles>
+  </mesh></geometry></library_geometries>
+  <library_visual_scenes><visual_scene id="scene"><node id="cube-node">
+    <instance_geometry url="#cube"/></node></visual_scene></library_visual_scenes>
+  <scene><instance_visual_scene url="#scene"/></scene>
+</COLLADA>
+)";
+}
+
+class Folder {
+ public:
+  Folder() {
+    std::mt19937_64 rng(
+        std::hash<std::string>()(::testing::UnitTest::GetInstance()->current_test_info()->name()));
+    path_ = fs::temp_directory_path() /
+            ("claspplan-urdf-" + std::to_string(rng()) + std::to_string(::getpid()));
+    fs::create_directories(path_);
+  }
+  ~Folder() {
+    std::error_code ec;
+    fs::remove_all(path_, ec);
+  }
+  std::string write(const std::string& name, const std::string& text) const {
+    const fs::path p = path_ / name;
+    fs::create_directories(p.parent_path());
+    std::ofstream(p, std::ios::binary) << text;
+    return p.string();
+  }
+  std::string path(const std::string& name) const {
+    fs::create_directories((path_ / name).parent_path());
+    return (path_ / name).string();
+  }
+
+  // The SDH with its palm's <box> replaced by `geometry`; returns the hand description's path.
+  std::string robot(const std::string& geometry, const std::string& folder = "robot") const {
+    write(folder + "/kr5_sdh.urdf",
+          replaced(embedded_model_file("kr5_sdh.urdf"), kPalmBox, geometry));
+    return write(folder + "/kr5_sdh.yaml", embedded_model_file("kr5_sdh.yaml"));
+  }
+
+ private:
+  fs::path path_;
+};
+
+// Sets an environment variable for one scope.
+class Env {
+ public:
+  Env(const char* name, const std::string& value) : name_(name) {
+    if (const char* old = std::getenv(name)) old_ = old;
+    ::setenv(name, value.c_str(), 1);
+  }
+  ~Env() {
+    if (old_.empty())
+      ::unsetenv(name_);
+    else
+      ::setenv(name_, old_.c_str(), 1);
+  }
+
+ private:
+  const char* name_;
+  std::string old_;
+};
+
+std::string load_error(const std::string& path) {
+  try {
+    load_robot(path);
+  } catch (const InputError& e) {
+    return e.what();
+  }
+  return "";
+}
+
+const CollisionShape& palm_shape(const RobotModel& m) {
+  return m.shapes[m.links[m.link_index("sdh_palm_link")].shapes.at(0)];
+}
+
+// A palm given as a scaled unit-cube mesh collides where the palm's box does: against a box
+// swept through the hand's workspace, at 400 random configurations.
+TEST(UrdfLoading, AMeshCollidesWhereTheSameBoxDoes) {
+  Folder dir;
+  write_stl(unit_cube(), dir.path("robot/meshes/cube.stl"));
+  const RobotModel box = load_robot("kr5_sdh");
+  const RobotModel mesh =
+      load_robot(dir.robot("<mesh filename=\"meshes/cube.stl\" scale=\"0.113 0.122 0.077\"/>"));
+  ASSERT_EQ(palm_shape(mesh).type, CollisionShape::Type::kMesh);
+  EXPECT_TRUE(mesh.warnings.empty());
+  EXPECT_TRUE(shape_bounds(palm_shape(mesh)).isApprox(shape_bounds(palm_shape(box)), 1e-6));
+  EXPECT_EQ(hand_size(mesh).finger_thickness, hand_size(box).finger_thickness);
+
+  CollisionWorld wb(box), wm(mesh);
+  wb.set_self_collision(false);
+  wm.set_self_collision(false);
+  std::mt19937_64 rng(7);
+  std::uniform_real_distribution<double> u(0.0, 1.0);
+  int hits = 0, agree = 0, n = 400;
+  for (int i = 0; i < n; ++i) {
+    Eigen::VectorXd q = box.home;
+    for (int j = 0; j < box.arm_dof; ++j)
+      q[j] = box.joints[j].lower + u(rng) * (box.joints[j].upper - box.joints[j].lower);
+    RobotData data(box);
+    forward_kinematics(box, q, data);
+    // A thin slab through the palm's centre, at a random height offset: half the draws touch.
+    const Eigen::Vector3d palm = data.link_poses[box.link_index("sdh_palm_link")].translation();
+    Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();
+    pose.translation() = palm + Eigen::Vector3d(0, 0, (u(rng) - 0.5) * 0.25);
+    wb.clear_environment();
+    wm.clear_environment();
+    wb.add_box(pose, Eigen::Vector3d(2, 2, 0.01));
+    wm.add_box(pose, Eigen::Vector3d(2, 2, 0.01));
+    const bool b = wb.in_collision(q), m = wm.in_collision(q);
+    hits += b;
+    agree += b == m;
+  }
+  EXPECT_GT(hits, n / 10);
+  EXPECT_EQ(agree, n);
+}
+
+// package:// found beside the URDF's folders (a description package's own layout) and through
+// CLASPPLAN_PACKAGE_PATH (a workspace's src/<group>/<package>); COLLADA in millimetres.
+TEST(UrdfLoading, PackageUrisAreFoundThroughTheSearchPath) {
+  Folder dir;
+  dir.write("sdh_description/meshes/palm.dae", cube_dae());
+  const RobotModel beside = load_robot(dir.robot(
+      "<mesh filename=\"package://sdh_description/meshes/palm.dae\" scale=\"0.113 0.122 0.077\"/>",
+      "sdh_description/urdf"));
+  const Eigen::AlignedBox3d b = shape_bounds(palm_shape(beside));
+  EXPECT_NEAR(b.sizes().x(), 0.113, 1e-6) << "the file's unit (mm) and the URDF's scale";
+  EXPECT_NEAR(b.sizes().z(), 2 * 0.077, 1e-6) << "Z up as written, not turned to Y up";
+
+  write_obj(unit_cube(), dir.path("ws/src/hands/sdh_meshes/collision/palm.obj"));
+  const std::string yaml = dir.robot(
+      "<mesh filename=\"package://sdh_meshes/collision/palm.obj\" scale=\"0.1 0.1 0.1\"/>");
+  const std::string missing = load_error(yaml);
+  EXPECT_NE(missing.find("package://sdh_meshes/collision/palm.obj' not found"), std::string::npos)
+      << missing;
+  EXPECT_NE(missing.find("CLASPPLAN_PACKAGE_PATH"), std::string::npos) << missing;
+  EXPECT_EQ(missing.find('\n'), std::string::npos);
+  {
+    Env path("CLASPPLAN_PACKAGE_PATH", "/nonexistent:" + dir.path("ws"));
+    const RobotModel m = load_robot(yaml);
+    EXPECT_NEAR(shape_bounds(palm_shape(m)).sizes().y(), 0.1, 1e-9);
+  }
+  // file:// and an absolute path.
+  const std::string stl = dir.path("elsewhere/palm.stl");
+  write_stl(unit_cube(), stl);
+  EXPECT_EQ(palm_shape(load_robot(dir.robot("<mesh filename=\"file://" + stl + "\"/>"))).type,
+            CollisionShape::Type::kMesh);
+  EXPECT_NE(load_error(dir.robot("<mesh filename=\"http://example.com/palm.stl\"/>"))
+                .find("only package://, file:// and file paths"),
+            std::string::npos);
+}
+
+// Placeholder geometry (zero sizes, a mesh without a file) is skipped with a warning naming the
+// link; a negative or non-finite size and a corrupt mesh file are errors.
+TEST(UrdfLoading, PlaceholderGeometryIsSkippedWithAWarning) {
+  Folder dir;
+  for (const std::string& placeholder :
+       {std::string("<sphere radius=\"0\"/>"), std::string("<box size=\"0 0 0\"/>"),
+        std::string("<cylinder radius=\"0.01\" length=\"0\"/>"),
+        std::string("<mesh filename=\"\"/>")}) {
+    const RobotModel m = load_robot(dir.robot(placeholder));
+    EXPECT_TRUE(m.links[m.link_index("sdh_palm_link")].shapes.empty()) << placeholder;
+    ASSERT_EQ(m.warnings.size(), 1u) << placeholder;
+    EXPECT_NE(m.warnings[0].find("link 'sdh_palm_link'"), std::string::npos) << m.warnings[0];
+    EXPECT_NE(m.warnings[0].find("placeholder geometry, skipped"), std::string::npos);
+  }
+  EXPECT_NE(load_error(dir.robot("<sphere radius=\"-0.1\"/>")).find("must be finite and > 0"),
+            std::string::npos);
+  dir.write("robot/bad.stl", "solid x\nfacet normal 0 0 1\nouter loop\nvertex 0 0\n");
+  const std::string corrupt = load_error(dir.robot("<mesh filename=\"bad.stl\"/>"));
+  EXPECT_NE(corrupt.find("bad.stl"), std::string::npos) << corrupt;
+  EXPECT_EQ(corrupt.find('\n'), std::string::npos) << corrupt;
+  dir.write("robot/bad.dae", "<COLLADA><library_geometries>");
+  EXPECT_NE(load_error(dir.robot("<mesh filename=\"bad.dae\"/>")).find("bad.dae"),
+            std::string::npos);
+}
+
+}  // namespace
+}  // namespace claspplan::robots
