@@ -8,7 +8,9 @@
 
 #include "core/input_error.hpp"
 #include "examples/command.hpp"
+#include "perception/loops.hpp"
 #include "robots/collision_world.hpp"
+#include "robots/hand_size.hpp"
 #include "robots/kinematics.hpp"
 #include "robots/robot_model.hpp"
 
@@ -48,6 +50,33 @@ std::vector<double> parse_q(const std::string& text) {
   return values;
 }
 
+// A finger thicker than this is likely a palm or a thumb's base listed among its links.
+constexpr double kThickFinger = 0.04;
+
+// What the hand can clasp (robots::hand_size, perception's ranking rules), and a warning when a
+// finger link is implausibly thick.
+struct ClaspRange {
+  robots::HandSize size;
+  double narrowest_hole = 0.0, widest_bar = 0.0;
+  std::string warning;
+};
+
+ClaspRange clasp_range(const robots::RobotModel& m) {
+  ClaspRange r;
+  r.size = robots::hand_size(m);
+  r.narrowest_hole = perception::narrowest_hole(r.size.finger_thickness);
+  r.widest_bar = perception::widest_bar(r.size.closed_aperture);
+  if (r.size.finger_thickness > kThickFinger) {
+    char text[300];
+    std::snprintf(text, sizeof text,
+                  "finger thickness %.1f cm comes from link '%s': implausibly thick for a "
+                  "finger; if it is a palm or a thumb's base, leave it out of its finger's links",
+                  100.0 * r.size.finger_thickness, m.links[r.size.thickest_link].name.c_str());
+    r.warning = text;
+  }
+  return r;
+}
+
 nlohmann::json vec(const Eigen::Vector3d& v) {
   return {v.x(), v.y(), v.z()};
 }
@@ -63,6 +92,7 @@ int run_robot(const RobotOptions& o) {
   const bool self_collision = world.in_collision(data, &contact);
   const auto self_contacts = world.self_contacts(data);
   const Eigen::Isometry3d& tool0 = data.link_poses[m.tool_link];
+  const ClaspRange range = clasp_range(m);
   std::size_t meshes = 0, triangles = 0;
   for (const auto& s : m.shapes)
     if (s.type == robots::CollisionShape::Type::kMesh) {
@@ -117,6 +147,14 @@ int run_robot(const RobotOptions& o) {
         {"mesh_shapes", meshes},
         {"mesh_triangles", triangles},
         {"warnings", m.warnings},
+        {"hand",
+         {{"finger_thickness", range.size.finger_thickness},
+          {"thickest_link",
+           range.size.thickest_link >= 0 ? m.links[range.size.thickest_link].name : ""},
+          {"closed_aperture", range.size.closed_aperture},
+          {"narrowest_hole", range.narrowest_hole},
+          {"widest_bar", range.widest_bar},
+          {"warning", range.warning}}},
     };
     if (self_collision) out["self_collision_pair"] = {contact.first, contact.second};
     nlohmann::json pairs = nlohmann::json::array();
@@ -131,6 +169,12 @@ int run_robot(const RobotOptions& o) {
   for (const auto& w : m.warnings) std::printf("warning: %s\n", w.c_str());
   std::printf("collision shapes: %zu (%zu meshes, %zu triangles)\n", m.shapes.size(), meshes,
               triangles);
+  std::printf(
+      "hand: fingers %.1f cm thick, closed aperture %.1f cm at vlink_goal %.2f: clasps holes from "
+      "%.1f cm wide and bars up to %.1f cm thick\n",
+      100.0 * range.size.finger_thickness, 100.0 * range.size.closed_aperture, m.vlink_goal,
+      100.0 * range.narrowest_hole, 100.0 * range.widest_bar);
+  if (!range.warning.empty()) std::printf("warning: %s\n", range.warning.c_str());
   std::printf("  %-3s %-20s %-4s %10s %10s %10s\n", "#", "joint", "part", "lower", "upper", "q");
   for (int i = 0; i < m.dof(); ++i) {
     const auto& j = m.joints[i];

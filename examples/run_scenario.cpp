@@ -163,6 +163,7 @@ RunOutcome run_scenario(const Scenario& scenario, const RunOptions& options) {
   const robots::RobotModel& model = *robot;
   for (const auto& w : model.warnings) say("warning: " + w);
   model.complete_q(s.start);  // a bad start is reported before any file is read
+  place_in_front_of_hand(s, model);
   json timing;
   json result = {{"scenario", s.path},
                  {"robot", s.robot},

@@ -13,6 +13,7 @@
 #include "examples/paper_objects.hpp"
 #include "examples/scene_render.hpp"
 #include "perception/camera.hpp"
+#include "robots/kinematics.hpp"
 
 namespace claspplan::cli {
 namespace {
@@ -143,7 +144,8 @@ EnvironmentBox read_box(const Reader& b) {
 }
 
 void read_object(const Reader& r, const fs::path& dir, ObjectSpec& o) {
-  r.only({"depth", "cloud", "mesh", "shape", "pose", "views", "cameras", "noise", "clutter"});
+  r.only({"depth", "cloud", "mesh", "shape", "pose", "in_front_of_hand", "views", "cameras",
+          "noise", "clutter"});
   int sources = 0;
   if (r.has("depth")) {
     ++sources;
@@ -218,6 +220,11 @@ void read_object(const Reader& r, const fs::path& dir, ObjectSpec& o) {
     for (std::size_t i = 0; i < o.clouds.size(); ++i)
       if (!o.cloud_pose_given[i]) o.clouds[i].pose = o.pose;
   }
+  if (r.has("in_front_of_hand")) {
+    if (r.has("pose")) r.fail("in_front_of_hand", "give pose or in_front_of_hand, not both");
+    if (o.mesh.empty() && !o.shape) r.fail("in_front_of_hand", "places a mesh or shape only");
+    o.in_front_of_hand = r.number("in_front_of_hand", 0.0, 0.0, 2.0);
+  }
   if (!o.depth.empty() && r.has("pose"))
     r.fail("pose", "depth images are placed by their camera files' T_world_camera");
   o.views = r.vectors("views");
@@ -257,6 +264,21 @@ void check_verification_budget(const tsrrt::SecureClaspOptions& check, const std
                      std::to_string(kMaxVerificationMotions) + " motions, got " +
                      std::to_string(check.sequences) + " x " + std::to_string(check.motions));
   }
+}
+
+void place_in_front_of_hand(Scenario& s, const robots::RobotModel& robot) {
+  if (!s.object.in_front_of_hand) return;
+  robots::RobotData data(robot);
+  robots::forward_kinematics(robot, robot.complete_q(s.start), data);
+  const Eigen::Vector3d fwd = robots::vector_direction(data, robot.v_fwd).normalized();
+  const Eigen::Vector3d swd = robots::vector_direction(data, robot.v_swd).normalized();
+  Eigen::Matrix3d axes;
+  axes.col(2) = fwd.cross(swd).normalized();
+  axes.col(0) = -fwd;
+  axes.col(1) = axes.col(2).cross(axes.col(0));
+  Eigen::Isometry3d& pose = s.object.pose;
+  pose.linear() = axes;
+  pose.translation() = robots::point_position(data, robot.tcp) + *s.object.in_front_of_hand * fwd;
 }
 
 Scenario load_scenario(const std::string& path) {

@@ -15,6 +15,7 @@
 #include "examples/objects.hpp"
 #include "perception/depth_render.hpp"
 #include "perception/pipeline.hpp"
+#include "robots/robot_model.hpp"
 #include "servo/clasp_controller.hpp"
 #include "servo/controller_run.hpp"
 #include "tsrrt/clasp_scene.hpp"
@@ -42,6 +43,10 @@ struct ObjectSpec {
   std::string mesh;                    ///< a mesh file (.obj/.ply/.stl/.off)
   std::optional<ShapeSpec> shape;      ///< or a procedural object
   Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();  ///< of a mesh, shape or clouds' frame
+  /// Or place a mesh or shape's frame this far (m) in front of the hand at the start: at the tcp
+  /// plus this times v_fwd, its z axis along v_fwd x v_swd and its x axis back toward the hand
+  /// (place_in_front_of_hand()). A torus's near strand is then major_radius closer, along v_swd.
+  std::optional<double> in_front_of_hand;
   /// Sample a mesh or shape only where visible from these camera positions (empty: whole surface).
   std::vector<Eigen::Vector3d> views;
   /// Or see it through synthetic depth cameras: the mesh and the environment boxes are rendered
@@ -83,6 +88,10 @@ void check_verification_budget(const tsrrt::SecureClaspOptions& check, const std
 
 /// Reads and validates a scenario. Throws InputError with the file and key for missing
 /// files, malformed YAML, unknown keys, wrong types and out-of-range values.
+/// Sets scenario.object.pose from object.in_front_of_hand (nothing without it) for this robot at
+/// the scenario's start: the same placement works for any hand.
+void place_in_front_of_hand(Scenario& scenario, const robots::RobotModel& robot);
+
 Scenario load_scenario(const std::string& path);
 
 /// The same from a scenario's text; `path` names it in messages, `base_dir` resolves its paths.

@@ -352,7 +352,7 @@ void assess(Loop& loop, const PointIndex& index, const Eigen::AlignedBox3d& boun
   // With a hand, the narrowest hole is its fingers' (min_hole is for an unknown hand).
   const bool hand = options.finger_thickness > 0;
   const double min_hole = hand ? options.finger_thickness + kFingerClearance : options.min_hole;
-  const double needed = hand ? min_hole + kHoleWidthExcess : min_hole;
+  const double needed = hand ? narrowest_hole(options.finger_thickness) : min_hole;
   if (loop.hole_width < needed) {
     loop.verdict = hand ? LoopVerdict::kHandTooLarge : LoopVerdict::kTooNarrow;
     loop.reason = hand ? "too narrow for this hand: hole " + metres(loop.hole_width) +

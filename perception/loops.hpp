@@ -43,8 +43,8 @@
 #include <string>
 #include <vector>
 
-#include "core/mesh.hpp"
 #include "core/clasp_target.hpp"
+#include "core/mesh.hpp"
 #include "perception/camera.hpp"
 #include "perception/sensed_space.hpp"
 
@@ -116,6 +116,12 @@ constexpr double kHoleWidthExcess = 0.003;
 /// max_bar), where the clasp check decides.
 inline double widest_bar(double closed_aperture) {
   return closed_aperture > 0 ? std::max(0.0, closed_aperture - kFingerClearance) : 0.0;
+}
+
+/// The narrowest hole a hand's fingers are sent through: their thickness, kFingerClearance and
+/// kHoleWidthExcess (the width test of a loop ranked for that hand).
+inline double narrowest_hole(double finger_thickness) {
+  return finger_thickness + kFingerClearance + kHoleWidthExcess;
 }
 
 struct RankingOptions {

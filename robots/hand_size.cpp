@@ -85,8 +85,13 @@ HandSize hand_size(const RobotModel& model) {
         moved |=
             std::find(f.joints.begin(), f.joints.end(), model.links[s].q_index) != f.joints.end();
       if (!moved) continue;
-      for (int s : model.links[link].shapes)
-        size.finger_thickness = std::max(size.finger_thickness, cross_section(model.shapes[s]));
+      for (int s : model.links[link].shapes) {
+        const double t = cross_section(model.shapes[s]);
+        if (t > size.finger_thickness) {
+          size.finger_thickness = t;
+          size.thickest_link = link;
+        }
+      }
     }
   }
 

@@ -12,6 +12,7 @@ struct HandSize {
   /// The widest cross-section of any finger link (the diameter of the circle around it): a hole
   /// must be at least this wide for the fingers to pass through it (m).
   double finger_thickness = 0.0;
+  int thickest_link = -1;  ///< the finger link whose shape gives finger_thickness
   /// The diameter of the largest bar the hand encloses when it is closed just enough to reach its
   /// virtual-linking goal: the largest circle inside every finger curve closed by its cord, less
   /// the fingers' own thickness (m). A thicker bar cannot be clasped.

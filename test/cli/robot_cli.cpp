@@ -81,6 +81,36 @@ TEST(RobotCli, DescriptionFileFromAnyFolder) {
   EXPECT_EQ(r.json()["joints"].size(), 12u);
 }
 
+// What the hand can clasp: the narrowest hole its fingers take and the thickest bar it closes
+// around, from the same rules that rank loops; a finger link thicker than 4 cm is warned of.
+TEST(RobotCli, PrintsTheHandsClaspRange) {
+  const CliResult icub = run_cli({"robot", "kr5_icub", "--json"});
+  ASSERT_EQ(icub.exit_code, 0) << icub.err;
+  const auto hand = icub.json()["hand"];
+  const double thickness = hand["finger_thickness"].get<double>();
+  EXPECT_NEAR(thickness, 0.014, 0.002);
+  EXPECT_NEAR(hand["narrowest_hole"].get<double>(), thickness + 0.013, 1e-9);
+  EXPECT_NEAR(hand["widest_bar"].get<double>(), hand["closed_aperture"].get<double>() - 0.01, 1e-9);
+  EXPECT_EQ(hand["warning"], "");
+  const CliResult human = run_cli({"robot", "kr5_icub"});
+  EXPECT_NE(human.out.find("clasps holes from 2.7 cm wide and bars up to 4.3 cm thick"),
+            std::string::npos)
+      << human.out;
+
+  TempDir dir;
+  std::string urdf = robots::embedded_model_file("kr5_sdh.urdf");
+  const std::string finger = "<cylinder radius=\"0.0145\" length=\"0.0865\"/>";
+  urdf.replace(urdf.find(finger), finger.size(), "<box size=\"0.05 0.03 0.0865\"/>");
+  dir.write("kr5_sdh.urdf", urdf);
+  const std::string yaml = dir.write("thick.yaml", robots::embedded_model_file("kr5_sdh.yaml"));
+  const CliResult thick = run_cli({"robot", yaml, "--json"});
+  ASSERT_EQ(thick.exit_code, 0) << thick.err;
+  const std::string warning = thick.json()["hand"]["warning"].get<std::string>();
+  EXPECT_NE(warning.find("finger thickness 5.8 cm comes from link 'finger_12_link'"),
+            std::string::npos)
+      << warning;
+}
+
 void expect_bad(const std::vector<std::string>& args, const std::string& reason_piece) {
   const CliResult r = run_cli(args);
   std::string all;

@@ -86,6 +86,34 @@ std::string write_ring_scenario(const TempDir& dir, const std::string& name,
                        position + "], rpy: [0, 1.5707963, 0]}\n" + extra);
 }
 
+// The first check of a new robot (issue 35): a ring placed by `in_front_of_hand` from the robot's
+// own tcp, v_fwd and v_swd, so that one scenario serves any hand; its near strand 20 cm ahead of
+// the tcp. Every shipped robot closes around it with the controller alone.
+TEST(ControllerOnly, ARingInFrontOfTheHandIsClaspedByEveryRobot) {
+  TempDir dir;
+  for (const std::string robot : {"kr5_sdh", "kr5_dlr", "kr5_icub", "kr5_armar3"}) {
+    const std::string path =
+        dir.write(robot + ".yaml", "robot: " + robot +
+                                       "\n"
+                                       "start: [0, -1.5707963, 1.5707963, 0, 1.5707963, 0]\n"
+                                       "object:\n"
+                                       "  shape: {type: torus, major_radius: 0.1, minor_radius: "
+                                       "0.01}\n"
+                                       "  in_front_of_hand: 0.3\n");
+    const CliResult r = run_cli(
+        {"run", path, "--controller-only", "--no-pictures", "--out", dir.file(robot), "--json"});
+    ASSERT_EQ(r.exit_code, 0) << robot << ": " << r.out << r.err;
+    EXPECT_TRUE(r.json()["success"].get<bool>()) << robot;
+  }
+  // Placed, not posed: both is an error, and so is placing depth images.
+  const CliResult both = run_cli(
+      {"run", write_ring_scenario(dir, "both.yaml", "0.5, 0, 0.2", "  in_front_of_hand: 0.3\n"),
+       "--controller-only", "--out", dir.file("both")});
+  EXPECT_EQ(both.exit_code, 2);
+  EXPECT_NE(both.err.find("give pose or in_front_of_hand, not both"), std::string::npos)
+      << both.err;
+}
+
 TEST(ControllerOnly, UnreachableTargetEndsWithNoProgress) {
   TempDir dir;
   const auto path = write_ring_scenario(dir, "far.yaml", "2.5, 0, 0.3");
