@@ -13,6 +13,7 @@
 #include "robots/hand_size.hpp"
 #include "robots/kinematics.hpp"
 #include "robots/robot_model.hpp"
+#include "robots/start_pose.hpp"
 
 namespace claspplan::cli {
 namespace {
@@ -21,11 +22,13 @@ struct RobotOptions {
   std::string robot;
   std::string q;
   bool q_given = false;
+  std::string start_above;  // "x,y,z": find a start with the tcp above this point
+  double height = 0.25;
   bool json = false;
 };
 
 // "0.1,-1.5,2" -> numbers. Every entry must be a complete finite number.
-std::vector<double> parse_q(const std::string& text) {
+std::vector<double> parse_numbers(const std::string& text, const std::string& flag) {
   std::vector<double> values;
   std::stringstream ss(text);
   std::string token;
@@ -35,18 +38,20 @@ std::vector<double> parse_q(const std::string& text) {
     const size_t a = token.find_first_not_of(" \t");
     const size_t b = token.find_last_not_of(" \t");
     token = a == std::string::npos ? "" : token.substr(a, b - a + 1);
-    if (token.empty()) throw InputError("--q: value " + std::to_string(index) + " is empty");
+    if (token.empty()) throw InputError(flag + ": value " + std::to_string(index) + " is empty");
     char* end = nullptr;
     errno = 0;
     const double v = std::strtod(token.c_str(), &end);
     if (end != token.c_str() + token.size() || errno == ERANGE)
-      throw InputError("--q: value " + std::to_string(index) + " '" + token + "' is not a number");
+      throw InputError(flag + ": value " + std::to_string(index) + " '" + token +
+                       "' is not a number");
     if (!std::isfinite(v))
-      throw InputError("--q: value " + std::to_string(index) + " '" + token + "' is not finite");
+      throw InputError(flag + ": value " + std::to_string(index) + " '" + token +
+                       "' is not finite");
     values.push_back(v);
   }
   if (values.empty() || (!text.empty() && text.back() == ','))
-    throw InputError("--q: expected comma-separated joint values, got '" + text + "'");
+    throw InputError(flag + ": expected comma-separated numbers, got '" + text + "'");
   return values;
 }
 
@@ -81,9 +86,28 @@ nlohmann::json vec(const Eigen::Vector3d& v) {
   return {v.x(), v.y(), v.z()};
 }
 
+// --start-above: the start found, or nothing (exit 1, the reason on stderr).
+std::optional<robots::StartPose> start_above(const robots::RobotModel& m, const RobotOptions& o) {
+  const std::vector<double> p = parse_numbers(o.start_above, "--start-above");
+  if (p.size() != 3) throw InputError("--start-above: expected x,y,z in metres");
+  robots::StartPoseOptions options;
+  options.height = o.height;
+  auto found = robots::find_start_above(m, Eigen::Vector3d(p[0], p[1], p[2]), options);
+  if (!found)
+    std::fprintf(stderr,
+                 "claspplan: no start with the tcp %.3f m above (%g, %g, %g) and v_fwd down: out "
+                 "of reach, or in self-collision or the floor at every one of %d tries\n",
+                 o.height, p[0], p[1], p[2], options.restarts);
+  return found;
+}
+
 int run_robot(const RobotOptions& o) {
   const robots::RobotModel m = robots::load_robot(o.robot);
-  const Eigen::VectorXd q = o.q_given ? m.complete_q(parse_q(o.q)) : m.home;
+  std::optional<robots::StartPose> start;
+  if (!o.start_above.empty() && !(start = start_above(m, o))) return kNoAnswer;
+  const Eigen::VectorXd q = start       ? start->q
+                            : o.q_given ? m.complete_q(parse_numbers(o.q, "--q"))
+                                        : m.home;
   robots::RobotData data(m);
   robots::FingerCurvesData curves;
   robots::finger_curves(m, q, data, curves, false);
@@ -157,6 +181,11 @@ int run_robot(const RobotOptions& o) {
           {"warning", range.warning}}},
     };
     if (self_collision) out["self_collision_pair"] = {contact.first, contact.second};
+    if (start)
+      out["start"] = {{"q", std::vector<double>(q.data(), q.data() + m.arm_dof)},
+                      {"position_error", start->position_error},
+                      {"angle_error", start->angle_error},
+                      {"restart", start->restart}};
     nlohmann::json pairs = nlohmann::json::array();
     for (const auto& [a, b] : self_contacts) pairs.push_back({a, b});
     out["self_collision_pairs"] = pairs;
@@ -180,6 +209,15 @@ int run_robot(const RobotOptions& o) {
     const auto& j = m.joints[i];
     std::printf("  %-3d %-20s %-4s %10.4f %10.4f %10.4f\n", i + 1, j.name.c_str(),
                 j.hand ? "hand" : "arm", j.lower, j.upper, q[i]);
+  }
+  if (start) {
+    std::printf(
+        "start found (restart %d; tcp %.1f mm from its target, v_fwd %.2f deg from down):\n"
+        "start: [",
+        start->restart, 1000.0 * start->position_error, start->angle_error * 180.0 / M_PI);
+    for (int i = 0; i < m.arm_dof; ++i)  // no "-0.000000"
+      std::printf("%s%.6f", i ? ", " : "", std::abs(q[i]) < 5e-7 ? 0.0 : q[i]);
+    std::printf("]\n");
   }
   const Eigen::Vector3d t = tool0.translation();
   std::printf("tool0 position (m): %.4f %.4f %.4f\n", t.x(), t.y(), t.z());
@@ -212,6 +250,13 @@ void add_robot_command(CLI::App& app, Action& action) {
       "joint values in radians (metres for prismatic joints), arm joints then hand joints in "
       "the order listed; a shorter list leaves the rest at the home pose / open pre-shape. "
       "Values outside a joint's limits are an error. Use --q=-1.5,... for a leading minus.");
+  cmd->add_option("--start-above", o->start_above,
+                  "x,y,z (m): find a start with the hand open, its tcp --height above this point "
+                  "and v_fwd pointing down, free of self-collision and the floor (exit 1 if none); "
+                  "prints it as a scenario's start")
+      ->excludes("--q");
+  cmd->add_option("--height", o->height, "metres of the tcp above --start-above's point")
+      ->check(CLI::Range(0.0, 5.0));
   cmd->add_flag("--json", o->json, "print one JSON object instead of the summary");
   cmd->callback([o, cmd, &action] {
     o->q_given = cmd->count("--q") > 0;

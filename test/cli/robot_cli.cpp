@@ -111,6 +111,23 @@ TEST(RobotCli, PrintsTheHandsClaspRange) {
       << warning;
 }
 
+// --start-above prints a start to paste into a scenario; none is exit 1 with the reason.
+TEST(RobotCli, FindsAStartAboveAPoint) {
+  const CliResult r = run_cli({"robot", "kr5_icub", "--start-above=0.5,0,0.1", "--json"});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const auto start = r.json()["start"];
+  ASSERT_EQ(start["q"].size(), 6u);
+  EXPECT_LE(start["position_error"].get<double>(), 0.005);
+  EXPECT_NEAR(r.json()["tcp"][2].get<double>(), 0.35, 0.005);
+  EXPECT_FALSE(r.json()["self_collision"].get<bool>());
+  const CliResult human = run_cli({"robot", "kr5_icub", "--start-above=0.5,0,0.1"});
+  EXPECT_NE(human.out.find("\nstart: ["), std::string::npos) << human.out;
+  const CliResult far = run_cli({"robot", "kr5_icub", "--start-above=3,0,0"});
+  EXPECT_EQ(far.exit_code, 1);
+  EXPECT_NE(far.err.find("no start with the tcp 0.250 m above (3, 0, 0)"), std::string::npos)
+      << far.err;
+}
+
 void expect_bad(const std::vector<std::string>& args, const std::string& reason_piece) {
   const CliResult r = run_cli(args);
   std::string all;
@@ -122,6 +139,8 @@ void expect_bad(const std::vector<std::string>& args, const std::string& reason_
 }
 
 TEST(RobotCli, BadQIsExitTwo) {
+  expect_bad({"robot", "kr5_sdh", "--start-above=0.5,0"}, "--start-above: expected x,y,z");
+  expect_bad({"robot", "kr5_sdh", "--start-above=0.5,0,0", "--q=0"}, "excludes");
   expect_bad({"robot", "kr5_sdh", "--q=0,abc"}, "'abc' is not a number");
   expect_bad({"robot", "kr5_sdh", "--q=0,,1"}, "value 2 is empty");
   expect_bad({"robot", "kr5_sdh", "--q=0,nan"}, "not finite");
