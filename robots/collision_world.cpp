@@ -218,7 +218,15 @@ struct CollisionWorld::Impl {
       return object->tree->touches_capsule(local.translation() - axis, local.translation() + axis,
                                            p.radius);
     }
-    return fcl_collide(shapes[s].geometry.get(), tf[s], object->collide.get(), object_pose);
+    return fcl_collide(shapes[s].geometry.get(), tf[s], object_for(p.type), object_pose);
+  }
+
+  // What a shape collides the object as: FCL collides two meshes only in one kind of bounding
+  // volume (else it warns and reports no contact), so a robot mesh (OBBRSS) meets the object's
+  // OBBRSS tree even where the exact round shapes' OBB tree is in use.
+  const fcl::CollisionGeometryd* object_for(CollisionShape::Type type) const {
+    if (type == CollisionShape::Type::kMesh && object->tree) return &object->distance_mesh();
+    return object->collide.get();
   }
 
   int shape_hits_environment(int s) {
@@ -476,13 +484,20 @@ bool CollisionWorld::link_near_object(const RobotData& data, int link, double cl
   for (int s : m.model.links[link].shapes) {
     m.place(data, s);
     CollisionShape grown = m.model.shapes[s];
+    Eigen::Isometry3d tf = m.tf[s];
+    if (grown.type == CollisionShape::Type::kMesh) {  // its box, which holds it
+      const Eigen::AlignedBox3d box = shape_bounds(grown);
+      grown.type = CollisionShape::Type::kBox;
+      grown.size = box.sizes();
+      tf = tf * Eigen::Translation3d(box.center());
+    }
     grown.radius += clearance;
     grown.size += Eigen::Vector3d::Constant(2 * clearance);
     if (grown.type == CollisionShape::Type::kCylinder) grown.length += 2 * clearance;
     const Primitive p = make_primitive(grown);
-    if (!p.bounds(m.object_pose_inv * m.tf[s]).overlaps(m.object->local_box)) continue;
+    if (!p.bounds(m.object_pose_inv * tf).overlaps(m.object->local_box)) continue;
     const Geometry g = make_geometry(grown);
-    if (fcl_collide(g.get(), m.tf[s], m.object->collide.get(), m.object_pose)) return true;
+    if (fcl_collide(g.get(), tf, m.object_for(grown.type), m.object_pose)) return true;
   }
   return false;
 }

@@ -1,4 +1,5 @@
-// The hand description (YAML) of a robot model, checked against its URDF: the arm and hand joints,
+// The hand description (YAML) of a robot model, checked against its URDF (and the hand's own URDF,
+// mounted on an arm link, when it comes apart): the arm and hand joints,
 // the home pose, held and mimic joints, fingers, finger curves, tcp / v_fwd / v_swd, the virtual
 // linking goal and the allowed collision pairs. build_model() runs the steps in this order.
 #include <algorithm>
@@ -360,13 +361,30 @@ void read_allowed_pairs(ModelBuild& b, const YamlField& root) {
                         m.allowed_pairs.end());
 }
 
+// hand_urdf: the hand's own URDF, mounted on an arm link at xyz / rpy (URDF conventions).
+void mount_hand(ModelBuild& b, const YamlField& n, const urdf::ModelInterface& hand,
+                const std::string& hand_file) {
+  const int parent = b.link_of(n.required("parent"));
+  const Eigen::Vector3d xyz = n.has("xyz") ? n["xyz"].vector3() : Eigen::Vector3d::Zero();
+  const Eigen::Vector3d rpy = n.has("rpy") ? n["rpy"].vector3() : Eigen::Vector3d::Zero();
+  Eigen::Isometry3d origin = Eigen::Isometry3d::Identity();
+  origin.translation() = xyz;
+  origin.linear() = (Eigen::AngleAxisd(rpy.z(), Eigen::Vector3d::UnitZ()) *
+                     Eigen::AngleAxisd(rpy.y(), Eigen::Vector3d::UnitY()) *
+                     Eigen::AngleAxisd(rpy.x(), Eigen::Vector3d::UnitX()))
+                        .toRotationMatrix();
+  attach_urdf_tree(hand, hand_file, parent, origin, b.m, b.urdf);
+}
+
 RobotModel build_model(const YamlField& root, const urdf::ModelInterface& urdf,
-                       const std::string& urdf_file, const std::string& source) {
+                       const std::string& urdf_file, const std::string& source,
+                       const urdf::ModelInterface* hand_urdf, const std::string& hand_file) {
   ModelBuild b{urdf_file, source, {}, {}, {}, {}, {}, {}, {}};
   b.m.source = source;
-  root.only({"name", "urdf", "arm", "hand", "collision"});
+  root.only({"name", "urdf", "hand_urdf", "arm", "hand", "collision"});
   b.m.name = root.required("name").text();
   b.urdf = read_urdf_tree(urdf, urdf_file, b.m);
+  if (hand_urdf) mount_hand(b, root["hand_urdf"], *hand_urdf, hand_file);
 
   const YamlField arm = root.required("arm");
   read_arm(b, arm);
@@ -393,7 +411,16 @@ RobotModel build_robot(const std::string& yaml_text, const std::string& yaml_fil
   try {
     const std::pair<std::string, std::string> urdf = read_urdf(root.required("urdf").text());
     const auto model = parse_urdf(urdf.second, urdf.first);
-    return build_model(root, *model, urdf.first, source);
+    urdf::ModelInterfaceSharedPtr hand;  // alive while the model is built: joints point into it
+    std::string hand_file;
+    if (root.has("hand_urdf")) {
+      const YamlField n = root["hand_urdf"];
+      n.only({"file", "parent", "xyz", "rpy"});
+      const auto text = read_urdf(n.required("file").text());
+      hand_file = text.first;
+      hand = parse_urdf(text.second, text.first);
+    }
+    return build_model(root, *model, urdf.first, source, hand.get(), hand_file);
   } catch (const YAML::Exception& e) {
     fail(yaml_file, YamlField::line_of(e.mark) + one_line(e.msg));
   }

@@ -31,6 +31,11 @@ struct UrdfJoints {
 UrdfJoints read_urdf_tree(const urdf::ModelInterface& urdf, const std::string& urdf_file,
                           RobotModel& model);
 
+/// Appends a second URDF's tree (a hand's) below link `parent`, its root at `origin` in the
+/// parent's frame through a fixed joint "<parent>_to_<root>". Link and joint names must be new.
+void attach_urdf_tree(const urdf::ModelInterface& urdf, const std::string& urdf_file, int parent,
+                      const Eigen::Isometry3d& origin, RobotModel& model, UrdfJoints& joints);
+
 /// Reads a URDF: (its name for messages, its text), given the name the hand description uses.
 using UrdfReader = std::function<std::pair<std::string, std::string>(const std::string&)>;
 

@@ -251,4 +251,23 @@ UrdfJoints read_urdf_tree(const urdf::ModelInterface& urdf, const std::string& u
   return joints;
 }
 
+void attach_urdf_tree(const urdf::ModelInterface& urdf, const std::string& urdf_file, int parent,
+                      const Eigen::Isometry3d& origin, RobotModel& m, UrdfJoints& joints) {
+  const auto root = urdf.getRoot();
+  if (!root) fail(urdf_file, "the URDF has no root link");
+  const int first = static_cast<int>(m.links.size());
+  ShapeReader reader{urdf_file, m.warnings, {}};
+  add_subtree(*root, parent, reader, m, joints);
+  m.links[first].origin = origin;
+  m.links[first].joint = m.links[parent].name + "_to_" + root->name;  // the mount, fixed
+  std::map<std::string, int> names;
+  for (std::size_t i = 0; i < m.links.size(); ++i)
+    if (!names.emplace(m.links[i].name, static_cast<int>(i)).second)
+      fail(urdf_file, "link '" + m.links[i].name + "' is also in the arm's URDF");
+  for (std::size_t i = first; i < m.links.size(); ++i) {
+    if (!joints.link_by_joint.emplace(m.links[i].joint, static_cast<int>(i)).second)
+      fail(urdf_file, "joint '" + m.links[i].joint + "' is also in the arm's URDF");
+  }
+}
+
 }  // namespace claspplan::robots::robot_model_detail

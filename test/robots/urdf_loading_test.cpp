@@ -14,6 +14,7 @@
 #include "robots/collision_world.hpp"
 #include "robots/embedded_models.hpp"
 #include "robots/hand_size.hpp"
+#include "robots/kinematics.hpp"
 #include "robots/robot_model.hpp"
 
 namespace claspplan::robots {
@@ -182,6 +183,47 @@ TEST(UrdfLoading, AMeshCollidesWhereTheSameBoxDoes) {
   EXPECT_EQ(agree, n);
 }
 
+// A mesh link meets the object (in both of its collision trees: FCL collides two meshes only in
+// one kind of bounding volume), unseen-space voxels and the object's clearance test. A mesh is a
+// surface: what lies wholly inside it is not met (as in every mesh-based checker), so the test's
+// object crosses the palm's face.
+TEST(UrdfLoading, AMeshMeetsTheObjectInBothTreesAndTheVoxels) {
+  Folder dir;
+  write_stl(unit_cube(), dir.path("robot/meshes/cube.stl"));
+  const RobotModel m =
+      load_robot(dir.robot("<mesh filename=\"meshes/cube.stl\" scale=\"0.113 0.122 0.077\"/>"));
+  const int palm = m.link_index("sdh_palm_link");
+  RobotData data(m);
+  forward_kinematics(m, m.home, data);
+  const Eigen::Isometry3d pose = data.link_poses[palm] * palm_shape(m).origin;
+  // A 1 cm cube of the object across the palm's face, then 2 cm outside it.
+  const TriangleMesh small = transformed(unit_cube(), Eigen::Isometry3d(Eigen::Scaling(0.01)));
+  for (const bool exact : {false, true}) {
+    for (const double offset : {0.0385, 0.0385 + 0.02}) {
+      CollisionWorld world(m);
+      world.set_self_collision(false);
+      world.set_exact_round_shapes(exact);
+      world.set_object(transformed(small, pose * Eigen::Translation3d(0, 0, offset)).vertices,
+                       small.triangles);
+      const bool inside = offset < 0.04;
+      EXPECT_EQ(world.in_collision(m.home), inside) << "exact " << exact << " offset " << offset;
+      EXPECT_TRUE(world.link_near_object(data, palm, 0.03)) << exact;
+      EXPECT_EQ(world.link_near_object(data, palm, 0.001), inside) << exact;
+    }
+  }
+  CollisionWorld world(m);
+  world.set_self_collision(false);
+  const Eigen::Vector3d face = pose * Eigen::Vector3d(0, 0, 0.0385);
+  std::vector<Eigen::Vector3d> voxels;  // 3 x 3 x 3 voxels of 5 mm around a point on the face
+  for (int i = -1; i <= 1; ++i)
+    for (int j = -1; j <= 1; ++j)
+      for (int k = -1; k <= 1; ++k)
+        voxels.push_back(((face / 0.005).array().round().matrix() + Eigen::Vector3d(i, j, k)) *
+                         0.005);
+  world.add_voxels(voxels, 0.005);
+  EXPECT_TRUE(world.in_collision(m.home));
+}
+
 // package:// found beside the URDF's folders (a description package's own layout) and through
 // CLASPPLAN_PACKAGE_PATH (a workspace's src/<group>/<package>); COLLADA in millimetres.
 TEST(UrdfLoading, PackageUrisAreFoundThroughTheSearchPath) {
@@ -240,6 +282,41 @@ TEST(UrdfLoading, PlaceholderGeometryIsSkippedWithAWarning) {
   dir.write("robot/bad.dae", "<COLLADA><library_geometries>");
   EXPECT_NE(load_error(dir.robot("<mesh filename=\"bad.dae\"/>")).find("bad.dae"),
             std::string::npos);
+}
+
+// An arm and a hand from two URDFs (as public descriptions come): the built-in SDH robot split
+// into the KR5's URDF and the hand's, joined by hand_urdf, is the same robot.
+TEST(UrdfLoading, AHandFromItsOwnUrdfIsMountedOnAnArmLink) {
+  Folder dir;
+  const std::string urdf = embedded_model_file("kr5_sdh.urdf");
+  const std::size_t split = urdf.find("  <!-- Schunk SDH");
+  const std::size_t mount = urdf.find("  <joint name=\"tool0-sdh_base\"");
+  const std::size_t mount_end = urdf.find("</joint>", mount) + 9;
+  ASSERT_NE(split, std::string::npos);
+  ASSERT_NE(mount, std::string::npos);
+  dir.write("r/kr5.urdf", urdf.substr(0, split) + "</robot>\n");
+  dir.write("r/hands/sdh.urdf",
+            "<robot name=\"sdh\">\n" + urdf.substr(split, mount - split) + urdf.substr(mount_end));
+  std::string yaml = embedded_model_file("kr5_sdh.yaml");
+  yaml.replace(yaml.find("urdf: kr5_sdh.urdf"), 18,
+               "urdf: kr5.urdf\nhand_urdf: {file: hands/sdh.urdf, parent: tool0, rpy: [0, 0, 0]}");
+  const RobotModel two = load_robot(dir.write("r/two.yaml", yaml));
+  const RobotModel one = load_robot("kr5_sdh");
+  ASSERT_EQ(two.dof(), one.dof());
+  EXPECT_EQ(two.links[two.link_index("sdh_base")].joint, "tool0_to_sdh_base");
+  RobotData d1(one), d2(two);
+  FingerCurvesData c1, c2;
+  finger_curves(one, one.home, d1, c1, false);
+  finger_curves(two, two.home, d2, c2, false);
+  ASSERT_EQ(c1.points.size(), c2.points.size());
+  for (std::size_t c = 0; c < c1.points.size(); ++c)
+    for (std::size_t i = 0; i < c1.points[c].size(); ++i)
+      EXPECT_LT((c1.points[c][i] - c2.points[c][i]).norm(), 1e-12);
+  // Mounted twice, every link name repeats: an error naming it.
+  yaml.replace(yaml.find("urdf: kr5.urdf"), 14, "urdf: kr5_sdh.urdf");
+  dir.write("r/kr5_sdh.urdf", urdf);
+  const std::string twice = load_error(dir.write("r/twice.yaml", yaml));
+  EXPECT_NE(twice.find("is also in the arm's URDF"), std::string::npos) << twice;
 }
 
 }  // namespace
