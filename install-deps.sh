@@ -12,6 +12,7 @@ packages=(
   libompl-dev                            # OMPL's RRTConnect: the benchmark's two-phase baseline
   liboctomap-dev                         # the sensed space as an OcTree, collided by FCL (robots)
   libassimp-dev                          # COLLADA (.dae) collision meshes of public URDFs (robots)
+  libqhull-dev                           # convex hulls of robot meshes (robots, collision.mesh_hulls)
   libgtest-dev libbenchmark-dev          # tests and kernel benchmarks
   clang-14 libclang-rt-14-dev            # libFuzzer targets (test/fuzz, .ci/fuzz.sh)
 )

@@ -7,8 +7,8 @@
 #include "examples/result_file.hpp"
 #include "examples/run_scenario.hpp"
 #include "robots/robot_model.hpp"
-#include "tsrrt/secure_clasp.hpp"
 #include "tsrrt/clasp_setup.hpp"
+#include "tsrrt/secure_clasp.hpp"
 
 namespace claspplan::cli {
 namespace {

@@ -5,11 +5,13 @@
 #include <algorithm>
 #include <cmath>
 #include <map>
+#include <memory>
 #include <sstream>
 #include <stdexcept>
 #include <vector>
 
 #include "core/yaml_field.hpp"
+#include "robots/convex_hull.hpp"
 #include "robots/robot_model_detail.hpp"
 
 namespace claspplan::robots::robot_model_detail {
@@ -342,12 +344,24 @@ void read_hand_frame(ModelBuild& b, const YamlField& hand) {
   }
 }
 
-// Allowed collision pairs.
+// collision.mesh_hulls: every mesh shape replaced by its convex hull (a shared mesh once).
+void use_mesh_hulls(RobotModel& m) {
+  std::map<const TriangleMesh*, std::shared_ptr<const TriangleMesh>> hulls;
+  for (CollisionShape& s : m.shapes) {
+    if (s.type != CollisionShape::Type::kMesh) continue;
+    auto& hull = hulls[s.mesh.get()];
+    if (!hull) hull = std::make_shared<const TriangleMesh>(convex_hull(s.mesh->vertices, s.source));
+    s.mesh = hull;
+  }
+}
+
+// Allowed collision pairs, and mesh hulls.
 void read_allowed_pairs(ModelBuild& b, const YamlField& root) {
   RobotModel& m = b.m;
   if (!root.has("collision")) return;
   const YamlField col = root["collision"];
-  col.only({"allowed_pairs"});
+  col.only({"allowed_pairs", "mesh_hulls"});
+  if (col.has("mesh_hulls") && col["mesh_hulls"].boolean()) use_mesh_hulls(m);
   if (!col.has("allowed_pairs")) return;
   for (const YamlField& pair : col["allowed_pairs"].items("link pairs")) {
     if (!pair.is_list() || pair.node().size() != 2) pair.fail("expected a pair [link_a, link_b]");
@@ -361,7 +375,8 @@ void read_allowed_pairs(ModelBuild& b, const YamlField& root) {
                         m.allowed_pairs.end());
 }
 
-// hand_urdf: the hand's own URDF, mounted on an arm link at xyz / rpy (URDF conventions).
+// hand_urdf: the hand's own URDF, mounted on an arm link at xyz / rpy (URDF conventions); the
+// arm's own gripper, `replaces` (a link and its subtree), is left out of the arm's URDF.
 void mount_hand(ModelBuild& b, const YamlField& n, const urdf::ModelInterface& hand,
                 const std::string& hand_file) {
   const int parent = b.link_of(n.required("parent"));
@@ -383,7 +398,15 @@ RobotModel build_model(const YamlField& root, const urdf::ModelInterface& urdf,
   b.m.source = source;
   root.only({"name", "urdf", "hand_urdf", "arm", "hand", "collision"});
   b.m.name = root.required("name").text();
-  b.urdf = read_urdf_tree(urdf, urdf_file, b.m);
+  std::vector<std::string> replaced;  // one link or a list
+  if (hand_urdf && root["hand_urdf"].has("replaces")) {
+    const YamlField r = root["hand_urdf"]["replaces"];
+    if (r.node().IsSequence())
+      for (const YamlField& link : r.items("replaces")) replaced.push_back(link.text());
+    else
+      replaced.push_back(r.text());
+  }
+  b.urdf = read_urdf_tree(urdf, urdf_file, b.m, replaced);
   if (hand_urdf) mount_hand(b, root["hand_urdf"], *hand_urdf, hand_file);
 
   const YamlField arm = root.required("arm");
@@ -415,7 +438,7 @@ RobotModel build_robot(const std::string& yaml_text, const std::string& yaml_fil
     std::string hand_file;
     if (root.has("hand_urdf")) {
       const YamlField n = root["hand_urdf"];
-      n.only({"file", "parent", "xyz", "rpy"});
+      n.only({"file", "parent", "xyz", "rpy", "replaces"});
       const auto text = read_urdf(n.required("file").text());
       hand_file = text.first;
       hand = parse_urdf(text.second, text.first);

@@ -119,6 +119,13 @@ void collect(const aiScene& scene, const aiNode& node, const aiMatrix4x4& parent
 }
 
 TriangleMesh read_with_assimp(const std::string& path) {
+  // Checked like our own readers' inputs: a file that claims no size or a huge one (/proc's) is
+  // not read.
+  constexpr std::uintmax_t kMaxBytes = std::uintmax_t(1) << 30;
+  std::error_code ec;
+  const std::uintmax_t bytes = fs::file_size(path, ec);
+  if (ec || bytes == 0 || bytes > kMaxBytes)
+    throw InputError(path + ": not a mesh file of 1 byte to 1 GiB");
   Assimp::Importer importer;
   // ROS reads COLLADA meshes in the link's frame: Assimp would turn a Z_UP file to Y up.
   importer.SetPropertyBool(AI_CONFIG_IMPORT_COLLADA_IGNORE_UP_DIRECTION, true);

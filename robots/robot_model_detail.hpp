@@ -8,6 +8,7 @@
 #include <map>
 #include <string>
 #include <utility>
+#include <vector>
 
 #include <urdf_parser/urdf_parser.h>
 
@@ -27,9 +28,10 @@ struct UrdfJoints {
   std::map<std::string, int> link_by_joint;                 ///< link index by joint name
 };
 
-/// Fills model.links (parents first, depth-first) and model.shapes from the URDF tree.
+/// Fills model.links (parents first, depth-first) and model.shapes from the URDF tree, without
+/// the links `left_out` and their subtrees.
 UrdfJoints read_urdf_tree(const urdf::ModelInterface& urdf, const std::string& urdf_file,
-                          RobotModel& model);
+                          RobotModel& model, const std::vector<std::string>& left_out = {});
 
 /// Appends a second URDF's tree (a hand's) below link `parent`, its root at `origin` in the
 /// parent's frame through a fixed joint "<parent>_to_<root>". Link and joint names must be new.

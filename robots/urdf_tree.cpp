@@ -1,5 +1,6 @@
 // The URDF part of a robot model: parsing (urdfdom), the link tree and the collision shapes
 // (primitives and meshes; placeholder geometry skipped with a warning).
+#include <algorithm>
 #include <cmath>
 #include <map>
 #include <memory>
@@ -50,6 +51,7 @@ bool finite(const Eigen::Isometry3d& t) {
 struct ShapeReader {
   const std::string& urdf_file;
   std::vector<std::string>& warnings;
+  std::vector<std::string> left_out;  // links whose subtrees are not read (an arm's own gripper)
   std::map<std::string, std::shared_ptr<const TriangleMesh>> meshes;  // by path and scale
 
   void skip(const urdf::Link& link, const std::string& what) {
@@ -213,7 +215,10 @@ void add_subtree(const urdf::Link& l, int parent, ShapeReader& reader, RobotMode
     m.links[index].shapes.push_back(static_cast<int>(m.shapes.size()));
     m.shapes.push_back(s);
   }
-  for (const auto& child : l.child_links) add_subtree(*child, index, reader, m, joints);
+  for (const auto& child : l.child_links)
+    if (std::find(reader.left_out.begin(), reader.left_out.end(), child->name) ==
+        reader.left_out.end())
+      add_subtree(*child, index, reader, m, joints);
 }
 
 }  // namespace
@@ -239,12 +244,15 @@ urdf::ModelInterfaceSharedPtr parse_urdf(const std::string& text, const std::str
 }
 
 UrdfJoints read_urdf_tree(const urdf::ModelInterface& urdf, const std::string& urdf_file,
-                          RobotModel& m) {
+                          RobotModel& m, const std::vector<std::string>& left_out) {
   // Links, parents first (depth-first; urdfdom orders children by joint name).
   const auto urdf_root = urdf.getRoot();
   if (!urdf_root) fail(urdf_file, "the URDF has no root link");
   UrdfJoints joints;
-  ShapeReader reader{urdf_file, m.warnings, {}};
+  for (const std::string& link : left_out)
+    if (!urdf.getLink(link) || link == urdf_root->name)
+      fail(urdf_file, "hand_urdf.replaces: '" + link + "' is not a link below the URDF's root");
+  ShapeReader reader{urdf_file, m.warnings, left_out, {}};
   add_subtree(*urdf_root, -1, reader, m, joints);
   for (size_t i = 1; i < m.links.size(); ++i)
     joints.link_by_joint[m.links[i].joint] = static_cast<int>(i);
@@ -256,7 +264,7 @@ void attach_urdf_tree(const urdf::ModelInterface& urdf, const std::string& urdf_
   const auto root = urdf.getRoot();
   if (!root) fail(urdf_file, "the URDF has no root link");
   const int first = static_cast<int>(m.links.size());
-  ShapeReader reader{urdf_file, m.warnings, {}};
+  ShapeReader reader{urdf_file, m.warnings, {}, {}};
   add_subtree(*root, parent, reader, m, joints);
   m.links[first].origin = origin;
   m.links[first].joint = m.links[parent].name + "_to_" + root->name;  // the mount, fixed

@@ -1,7 +1,7 @@
-// Public robots used as they are (examples/robots/, issue 35): the UR5 with the Allegro hand
-// loads from its two unmodified URDFs (STL collision meshes, package:// URIs, a 16-joint hand in
-// its own URDF), and plans verified clasps of the purse, the jug and the bag; the ring placed in
-// front of the hand is verified for every shipped robot.
+// Public robots used as they are (examples/robots/, issue 35): a UR5, a Panda (7 joints) and a
+// Jaco (continuous joints, COLLADA meshes as hulls), each with the 16-joint Allegro hand from its
+// own URDF, load from their unmodified URDFs and plan verified clasps of the purse, the jug and
+// the bag; the ring placed in front of the hand is verified for every shipped robot.
 #include <string>
 
 #include <gtest/gtest.h>
@@ -12,26 +12,33 @@
 namespace claspplan::test {
 namespace {
 
-const std::string kUr5Allegro = std::string(CLASPPLAN_ROBOTS) + "/ur5_allegro.yaml";
+const std::string kRobots = CLASPPLAN_ROBOTS;
+const std::string kUr5Allegro = kRobots + "/ur5_allegro.yaml";
 
-TEST(PublicRobots, Ur5AllegroLoadsFromItsUnmodifiedUrdfs) {
-  const CliResult r = run_cli({"robot", kUr5Allegro, "--json"});
+struct PublicRobot {
+  std::string name;
+  int arm_dof, meshes;
+};
+
+class PublicRobots : public ::testing::TestWithParam<PublicRobot> {};
+
+TEST_P(PublicRobots, LoadFromTheirUnmodifiedUrdfs) {
+  const CliResult r = run_cli({"robot", kRobots + "/" + GetParam().name + ".yaml", "--json"});
   ASSERT_EQ(r.exit_code, 0) << r.err;
   const auto j = r.json();
-  EXPECT_EQ(j["arm_dof"].get<int>(), 6);
+  EXPECT_EQ(j["arm_dof"].get<int>(), GetParam().arm_dof);
   EXPECT_EQ(j["hand_dof"].get<int>(), 16);
-  EXPECT_EQ(j["mesh_shapes"].get<int>(), 7);  // the UR5's links
+  EXPECT_EQ(j["mesh_shapes"].get<int>(), GetParam().meshes);  // the arm's links
   EXPECT_TRUE(j["warnings"].empty());
   EXPECT_FALSE(j["self_collision"].get<bool>());
   EXPECT_GT(j["hand"]["closed_aperture"].get<double>(), 0.03);
 }
 
 // Bounded by cycles, so that the outcome does not depend on the machine.
-TEST(PublicRobots, Ur5AllegroClaspsThePurseTheJugAndTheBag) {
+TEST_P(PublicRobots, ClaspThePurseTheJugAndTheBag) {
   TempDir dir;
   for (const char* object : {"purse_1", "jug", "bag_2"}) {
-    const std::string scenario =
-        std::string(CLASPPLAN_ROBOTS) + "/scenarios/" + object + "_ur5_allegro.yaml";
+    const std::string scenario = kRobots + "/scenarios/" + object + "_" + GetParam().name + ".yaml";
     const CliResult r = run_cli({"run", scenario, "--seed", "2", "--max-cycles", "100",
                                  "--no-pictures", "--out", dir.file(object), "--json"});
     ASSERT_EQ(r.exit_code, 0) << object << ": " << r.out << r.err;
@@ -39,11 +46,23 @@ TEST(PublicRobots, Ur5AllegroClaspsThePurseTheJugAndTheBag) {
   }
 }
 
+INSTANTIATE_TEST_SUITE_P(ArmsWithTheAllegroHand, PublicRobots,
+                         ::testing::Values(PublicRobot{"ur5_allegro", 6, 7},
+                                           PublicRobot{"panda_allegro", 7, 8},
+                                           PublicRobot{"jaco_allegro", 6, 7}),
+                         [](const auto& info) { return info.param.name; });
+
 // The first check of any robot: a ring placed from the hand's own tcp, v_fwd and v_swd
 // (object.in_front_of_hand), planned and verified.
-TEST(PublicRobots, TheRingInFrontOfTheHandIsVerifiedForEveryShippedRobot) {
+TEST(ShippedRobots, VerifyTheRingInFrontOfTheHand) {
   TempDir dir;
-  const std::string robots[] = {"kr5_sdh", "kr5_dlr", "kr5_icub", "kr5_armar3", kUr5Allegro};
+  const std::string robots[] = {"kr5_sdh",
+                                "kr5_dlr",
+                                "kr5_icub",
+                                "kr5_armar3",
+                                kUr5Allegro,
+                                kRobots + "/panda_allegro.yaml",
+                                kRobots + "/jaco_allegro.yaml"};
   for (const std::string& robot : robots) {
     const std::string start =
         robot.rfind("kr5_", 0) == 0 ? "start: [0, -1.5707963, 1.5707963, 0, 1.5707963, 0]\n" : "";

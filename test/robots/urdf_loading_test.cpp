@@ -1,6 +1,7 @@
 // Public URDFs as they are (issue 35): mesh collision geometry (STL, OBJ, COLLADA) found through
 // package://, file:// and relative URIs, and placeholder geometry skipped with a warning. Each
 // case edits one collision element of the built-in SDH's URDF and writes the files it names.
+#include <cmath>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
@@ -12,6 +13,7 @@
 
 #include "core/file_io.hpp"
 #include "robots/collision_world.hpp"
+#include "robots/convex_hull.hpp"
 #include "robots/embedded_models.hpp"
 #include "robots/hand_size.hpp"
 #include "robots/kinematics.hpp"
@@ -312,11 +314,50 @@ TEST(UrdfLoading, AHandFromItsOwnUrdfIsMountedOnAnArmLink) {
   for (std::size_t c = 0; c < c1.points.size(); ++c)
     for (std::size_t i = 0; i < c1.points[c].size(); ++i)
       EXPECT_LT((c1.points[c][i] - c2.points[c][i]).norm(), 1e-12);
+  // The arm's own gripper left out (`replaces`): here the KR5's flange and what hangs below it, so
+  // the hand's mount on tool0 has nothing to hold it; a link not in the arm's URDF is an error.
+  std::string replaces = yaml;
+  replaces.replace(replaces.find("rpy: [0, 0, 0]}"), 15, "replaces: [nope]}");
+  EXPECT_NE(load_error(dir.write("r/replaces.yaml", replaces))
+                .find("hand_urdf.replaces: 'nope' is not a link below the URDF's root"),
+            std::string::npos);
+  replaces = yaml;
+  replaces.replace(replaces.find("rpy: [0, 0, 0]}"), 15, "replaces: flange}");
+  EXPECT_NE(load_error(dir.write("r/flange.yaml", replaces)).find("unknown link 'tool0'"),
+            std::string::npos);
   // Mounted twice, every link name repeats: an error naming it.
   yaml.replace(yaml.find("urdf: kr5.urdf"), 14, "urdf: kr5_sdh.urdf");
   dir.write("r/kr5_sdh.urdf", urdf);
   const std::string twice = load_error(dir.write("r/twice.yaml", yaml));
   EXPECT_NE(twice.find("is also in the arm's URDF"), std::string::npos) << twice;
+}
+
+// collision.mesh_hulls: a mesh link checked as its convex hull (Qhull), facing out; points that
+// span no volume are an error.
+TEST(UrdfLoading, MeshHullsReplaceMeshesByTheirConvexHulls) {
+  std::vector<Eigen::Vector3d> points = unit_cube().vertices;
+  for (int i = 0; i < 50; ++i)  // inside: not on the hull
+    points.emplace_back(0.4 * std::sin(i), 0.4 * std::cos(3 * i), 0.4 * std::sin(7 * i));
+  const TriangleMesh hull = convex_hull(points, "cube");
+  EXPECT_EQ(hull.vertices.size(), 8u);
+  EXPECT_EQ(hull.triangles.size(), 12u);
+  EXPECT_TRUE(is_watertight(hull));
+  for (const auto& t : hull.triangles) {
+    const Eigen::Vector3d a = hull.vertices[t[0]], b = hull.vertices[t[1]], c = hull.vertices[t[2]];
+    EXPECT_GT((b - a).cross(c - a).dot((a + b + c) / 3.0), 0.0) << "facing out";
+  }
+  EXPECT_THROW(convex_hull({{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {1, 1, 0}}, "flat"), InputError);
+
+  Folder dir;
+  TriangleMesh dense = unit_cube();
+  for (const auto& p : points) dense.vertices.push_back(p);  // unused vertices: the hull drops them
+  write_obj(dense, dir.path("robot/meshes/cube.obj"));
+  std::string yaml = embedded_model_file("kr5_sdh.yaml");
+  yaml += "  mesh_hulls: true\n";  // appended to the collision section, the file's last
+  dir.robot("<mesh filename=\"meshes/cube.obj\" scale=\"0.113 0.122 0.077\"/>");
+  const RobotModel m = load_robot(dir.write("robot/hulls.yaml", yaml));
+  EXPECT_EQ(palm_shape(m).mesh->triangles.size(), 12u);
+  EXPECT_EQ(palm_shape(m).mesh->vertices.size(), 8u);
 }
 
 }  // namespace
