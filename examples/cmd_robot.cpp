@@ -87,7 +87,7 @@ nlohmann::json vec(const Eigen::Vector3d& v) {
 }
 
 // --start-above: the start found, or nothing (exit 1, the reason on stderr).
-std::optional<robots::StartPose> start_above(const robots::RobotModel& m, const RobotOptions& o) {
+std::optional<robots::StartPose> find_start(const robots::RobotModel& m, const RobotOptions& o) {
   const std::vector<double> p = parse_numbers(o.start_above, "--start-above");
   if (p.size() != 3) throw InputError("--start-above: expected x,y,z in metres");
   robots::StartPoseOptions options;
@@ -104,7 +104,7 @@ std::optional<robots::StartPose> start_above(const robots::RobotModel& m, const 
 int run_robot(const RobotOptions& o) {
   const robots::RobotModel m = robots::load_robot(o.robot);
   std::optional<robots::StartPose> start;
-  if (!o.start_above.empty() && !(start = start_above(m, o))) return kNoAnswer;
+  if (!o.start_above.empty() && !(start = find_start(m, o))) return kNoAnswer;
   const Eigen::VectorXd q = start       ? start->q
                             : o.q_given ? m.complete_q(parse_numbers(o.q, "--q"))
                                         : m.home;

@@ -81,13 +81,9 @@ Geometry make_geometry(const CollisionShape& s) {
     case CollisionShape::Type::kCapsule:
       return std::make_shared<fcl::Capsuled>(s.radius, s.length);
     case CollisionShape::Type::kMesh: {
-      auto bvh = std::make_shared<fcl::BVHModel<fcl::OBBRSSd>>();
       std::vector<fcl::Triangle> triangles;
       for (const auto& t : s.mesh->triangles) triangles.emplace_back(t[0], t[1], t[2]);
-      bvh->beginModel();
-      bvh->addSubModel(s.mesh->vertices, triangles);
-      bvh->endModel();
-      return bvh;
+      return build_bvh<Mesh>(s.mesh->vertices, triangles);
     }
   }
   throw std::logic_error("unknown collision shape type");
