@@ -73,32 +73,6 @@ json outcomes_json(const tsrrt::ConnectOutcomes& o) {
           {"joined", o.joined}};
 }
 
-// The request for the scenario: the run options replace its seed and search bound.
-tsrrt::ClaspRequest clasp_request(const Scenario& s, const RunOptions& options,
-                                  std::shared_ptr<const robots::RobotModel> robot,
-                                  perception::PerceptionInputs inputs) {
-  tsrrt::ClaspRequest request;
-  request.robot = std::move(robot);
-  request.start =
-      Eigen::Map<const Eigen::VectorXd>(s.start.data(), static_cast<Eigen::Index>(s.start.size()));
-  request.object = std::move(inputs);
-  request.environment = s.boxes;
-  request.loop_hint = s.loop_hint;
-  request.goal_linking = s.goal_linking;
-  request.perception = s.perception;
-  request.controller = s.controller;
-  request.controller_run = s.controller_run;
-  request.planning = s.planning;
-  request.mode =
-      options.controller_only ? tsrrt::ClaspMode::kControllerOnly : tsrrt::ClaspMode::kPlan;
-  request.search = options.search;
-  request.seed = options.seed;
-  request.max_cycles = options.max_cycles;
-  request.time_limit = options.time_limit;
-  request.name = s.path;
-  return request;
-}
-
 // The controller-only phase's part of result.json, timing.json and the summary.
 json controller_json(const tsrrt::ClaspResult& r, json& result, json& timing) {
   timing["controller"] = r.timings.controller;
@@ -151,6 +125,31 @@ json planner_json(const tsrrt::ClaspResult& r, const SceneGeometry& scene,
 }
 
 }  // namespace
+
+tsrrt::ClaspRequest clasp_request(const Scenario& s, const RunOptions& options,
+                                  std::shared_ptr<const robots::RobotModel> robot,
+                                  perception::PerceptionInputs inputs) {
+  tsrrt::ClaspRequest request;
+  request.robot = std::move(robot);
+  request.start =
+      Eigen::Map<const Eigen::VectorXd>(s.start.data(), static_cast<Eigen::Index>(s.start.size()));
+  request.object = std::move(inputs);
+  request.environment = s.boxes;
+  request.loop_hint = s.loop_hint;
+  request.goal_linking = s.goal_linking;
+  request.perception = s.perception;
+  request.controller = s.controller;
+  request.controller_run = s.controller_run;
+  request.planning = s.planning;
+  request.mode =
+      options.controller_only ? tsrrt::ClaspMode::kControllerOnly : tsrrt::ClaspMode::kPlan;
+  request.search = options.search;
+  request.seed = options.seed;
+  request.max_cycles = options.max_cycles;
+  request.time_limit = options.time_limit;
+  request.name = s.path;
+  return request;
+}
 
 RunOutcome run_scenario(const Scenario& scenario, const RunOptions& options) {
   const auto t_start = Clock::now();

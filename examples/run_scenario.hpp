@@ -32,6 +32,12 @@ struct RunOutcome {
   nlohmann::json summary;  ///< what `run --json` prints
 };
 
+/// The planner's request for a scenario, its robot and its read inputs: the run options replace
+/// its seed and search bound.
+tsrrt::ClaspRequest clasp_request(const Scenario& scenario, const RunOptions& options,
+                                  std::shared_ptr<const robots::RobotModel> robot,
+                                  perception::PerceptionInputs inputs);
+
 /// Runs a scenario and writes result.json, timing.json and the pictures into options.out_dir.
 /// Throws InputError for malformed input (a start pose in collision included).
 RunOutcome run_scenario(const Scenario& scenario, const RunOptions& options);

@@ -94,7 +94,7 @@ Primitive make_primitive(const CollisionShape& s) {
   p.type = s.type;
   p.half = 0.5 * s.size;
   if (s.type == CollisionShape::Type::kMesh) {
-    const Eigen::AlignedBox3d b = bounds(*s.mesh);
+    const Eigen::AlignedBox3d b = shape_bounds(s);
     p.centre = b.center();
     p.half = 0.5 * b.sizes();
   }

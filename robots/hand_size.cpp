@@ -19,7 +19,7 @@ double cross_section(const CollisionShape& s) {
   switch (s.type) {
     case CollisionShape::Type::kBox:
     case CollisionShape::Type::kMesh: {
-      Eigen::Vector3d e = s.type == CollisionShape::Type::kBox ? s.size : bounds(*s.mesh).sizes();
+      Eigen::Vector3d e = shape_bounds(s).sizes();
       std::sort(e.data(), e.data() + 3);
       return std::hypot(e[0], e[1]);
     }

@@ -10,6 +10,7 @@
 
 #include <gtest/gtest.h>
 
+#include "examples/run_scenario.hpp"
 #include "examples/scenario.hpp"
 #include "perception/pipeline.hpp"
 #include "perception/sensed_space.hpp"
@@ -170,15 +171,11 @@ class RecordingProblem final : public tsrrt::PlanningProblem {
 TEST(RealClouds, NoSearchedMotionOrClosedHandEntersUnseenSpace) {
   const cli::Scenario s = cli::load_scenario(std::string(CLASPPLAN_SCENARIOS) +
                                              "/clouds/table_scene_mug_stereo_textured_icub.yaml");
-  tsrrt::ClaspRequest request;
-  request.robot = std::make_shared<const robots::RobotModel>(robots::load_robot(s.robot));
-  request.start =
-      Eigen::Map<const Eigen::VectorXd>(s.start.data(), static_cast<Eigen::Index>(s.start.size()));
-  request.object = cli::scenario_inputs(s);
-  request.environment = s.boxes;
-  request.perception = s.perception;
-  request.planning = s.planning;
-  request.seed = s.seed;
+  cli::RunOptions options;
+  options.seed = s.seed;
+  tsrrt::ClaspRequest request = cli::clasp_request(
+      s, options, std::make_shared<const robots::RobotModel>(robots::load_robot(s.robot)),
+      cli::scenario_inputs(s));
   std::vector<std::vector<Eigen::VectorXd>> motions;
   std::vector<Eigen::VectorXd> closed;
   int nodes = 0;
