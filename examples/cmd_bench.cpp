@@ -38,6 +38,7 @@ struct BenchOptions {
   int max_cycles = 0;
   bool controller_only = false;
   bool json = false;
+  std::string robot;  ///< replaces every scenario's robot
 };
 
 nlohmann::json read_json_file(const fs::path& path) {
@@ -83,6 +84,7 @@ BenchRecord run_case(const BenchCase& c, const BenchOptions& o, const fs::path& 
   nlohmann::json summary;
   try {
     Scenario scenario = load_scenario(c.scenario);
+    if (!o.robot.empty()) use_robot(scenario, o.robot);
     if (c.tolerance > 0) {  // the sweep: the first goal node at this tolerance, verified after
       scenario.planning.closable_linking = c.tolerance;
       scenario.planning.verify_in_search = false;
@@ -248,6 +250,10 @@ void add_bench_command(CLI::App& app, Action& action) {
   cmd->add_option("--max-cycles", o->max_cycles,
                   "bound each run by TS-RRT cycles instead of time (machine-independent)")
       ->check(CLI::Range(1, 10000000));
+  cmd->add_option(
+      "--robot", o->robot,
+      "plan with this robot instead of the scenario's (built-in name or hand-description "
+      "file); the scenario's start must fit its arm");
   cmd->add_flag("--controller-only", o->controller_only,
                 "no planning: the clasp controller alone (success = its goal reached)");
   cmd->add_flag("--json", o->json, "print one JSON summary object");

@@ -1,5 +1,5 @@
 // `claspplan run SCENARIO.yaml [--out DIR] [--seed N] [--time-limit S] [--max-cycles N]
-// [--controller-only] [--json]`: the main job on a scenario file.
+// [--robot R] [--controller-only] [--json]`: the main job on a scenario file.
 #include <cstdio>
 
 #include "examples/command.hpp"
@@ -10,6 +10,7 @@ namespace {
 
 struct RunCommandOptions {
   std::string scenario;
+  std::string robot;  // replaces the scenario's
   RunOptions run;
   std::uint64_t seed = 0;
   double time_limit = 0.0;
@@ -33,6 +34,10 @@ void add_run_command(CLI::App& app, Action& action) {
                   "bound the search by TS-RRT cycles instead of time (reproducible on any "
                   "machine; no time limit unless --time-limit is given too)")
       ->check(CLI::Range(1, 10000000));
+  cmd->add_option(
+      "--robot", o->robot,
+      "plan with this robot instead of the scenario's (built-in name or hand-description "
+      "file); the scenario's start must fit its arm");
   cmd->add_flag("--controller-only", o->run.controller_only,
                 "no planning: iterate the clasp controller toward the nearest clasp target");
   cmd->add_flag("--no-pictures", o->no_pictures, "skip the PNG pictures");
@@ -44,7 +49,9 @@ void add_run_command(CLI::App& app, Action& action) {
     action = [o] {
       o->run.pictures = !o->no_pictures;
       o->run.quiet = o->json;
-      const RunOutcome outcome = run_scenario(load_scenario(o->scenario), o->run);
+      Scenario scenario = load_scenario(o->scenario);
+      if (!o->robot.empty()) use_robot(scenario, o->robot);
+      const RunOutcome outcome = run_scenario(scenario, o->run);
       if (o->json) {
         print_json(outcome.summary);
       } else {

@@ -47,6 +47,10 @@ const std::vector<CommandInfo>& command_list() {
        "The actuated joints (name, limits, arm or hand), the pose of tool0 and the finger curves "
        "of a robot at a configuration. NAME is a built-in robot (kr5_sdh, kr5_dlr, kr5_icub, "
        "kr5_armar3) or the path of a hand-description YAML file."},
+      {"describe",
+       "Draft a hand description for a robot from its URDF (and a hand's own URDF): arm chain, "
+       "fingers, finger curves, tcp, v_fwd, v_swd, vlink_goal and allowed collision pairs, with "
+       "what was guessed. Exit 0 when written, 2 on bad input."},
       {"loops",
        "Perception only (paper Sec. IV-A): the object's loops from depth images (PNG + --camera), "
        "clouds (.pcd .ply .xyz) or meshes (.obj .ply .stl .off); beta1, d, the loops ranked "

@@ -58,6 +58,7 @@ int run_app(CLI::App& app, const Action& action, int argc, char** argv);
 // One function per subcommand, each in its cmd_<name>.cpp.
 void add_bench_command(CLI::App& app, Action& action);
 void add_demo_command(CLI::App& app, Action& action);
+void add_describe_command(CLI::App& app, Action& action);
 void add_linking_command(CLI::App& app, Action& action);
 void add_robot_command(CLI::App& app, Action& action);
 void add_loops_command(CLI::App& app, Action& action);

@@ -12,6 +12,7 @@ int main(int argc, char** argv) {
   add_bench_command(app, action);
   add_linking_command(app, action);
   add_robot_command(app, action);
+  add_describe_command(app, action);
   add_loops_command(app, action);
   add_run_command(app, action);
   add_verify_command(app, action);

@@ -281,6 +281,15 @@ void place_in_front_of_hand(Scenario& s, const robots::RobotModel& robot) {
   pose.translation() = robots::point_position(data, robot.tcp) + *s.object.in_front_of_hand * fwd;
 }
 
+void use_robot(Scenario& s, const std::string& robot, const std::string& base_dir) {
+  const std::vector<std::string> builtin = robots::builtin_robots();
+  // A description file by its absolute path: result.json records it, and `verify` reads it back
+  // from any directory.
+  s.robot = std::find(builtin.begin(), builtin.end(), robot) != builtin.end()
+                ? robot
+                : fs::absolute(resolve(base_dir, robot)).lexically_normal().string();
+}
+
 Scenario load_scenario(const std::string& path) {
   if (!fs::is_regular_file(path)) throw InputError(path + ": no such scenario file");
   std::ifstream in(path);
@@ -415,13 +424,7 @@ Scenario read_scenario(const YamlField& root, const std::string& path,
   s.name = r.text("name", fs::path(path).stem().string());
   if (!r.has("robot"))
     r.fail("robot", "missing (a built-in robot name or a hand-description file)");
-  s.robot = r.text("robot");
-  const std::vector<std::string> builtin = robots::builtin_robots();
-  // A description file by its absolute path: result.json records it, and `verify` reads it back
-  // from any directory.
-  if (std::find(builtin.begin(), builtin.end(), s.robot) == builtin.end()) {
-    s.robot = fs::absolute(resolve(dir, s.robot)).lexically_normal().string();
-  }
+  use_robot(s, r.text("robot"), dir);
   s.start = r.numbers("start");
   s.seed = static_cast<std::uint64_t>(r.integer("seed", 1, 0, 2147483647));
 

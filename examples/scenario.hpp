@@ -94,6 +94,11 @@ void place_in_front_of_hand(Scenario& scenario, const robots::RobotModel& robot)
 
 Scenario load_scenario(const std::string& path);
 
+/// Sets the scenario's robot: a built-in name, or a hand-description file relative to `base_dir`
+/// (recorded by its absolute path). `run --robot` and `bench --robot` try a scenario with another
+/// robot whose arm its start fits.
+void use_robot(Scenario& scenario, const std::string& robot, const std::string& base_dir = ".");
+
 /// The same from a scenario's text; `path` names it in messages, `base_dir` resolves its paths.
 Scenario load_scenario_text(const std::string& text, const std::string& path,
                             const std::string& base_dir);

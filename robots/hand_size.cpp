@@ -13,24 +13,6 @@
 namespace claspplan::robots {
 namespace {
 
-// The diameter of the circle around a shape's cross-section, across its longest axis (a mesh:
-// its box's, in the mesh's frame).
-double cross_section(const CollisionShape& s) {
-  switch (s.type) {
-    case CollisionShape::Type::kBox:
-    case CollisionShape::Type::kMesh: {
-      Eigen::Vector3d e = shape_bounds(s).sizes();
-      std::sort(e.data(), e.data() + 3);
-      return std::hypot(e[0], e[1]);
-    }
-    case CollisionShape::Type::kSphere:
-    case CollisionShape::Type::kCylinder:
-    case CollisionShape::Type::kCapsule:
-      return 2.0 * s.radius;
-  }
-  return 0.0;
-}
-
 double closed_length(const std::vector<Eigen::Vector3d>& c) {
   double l = 0.0;
   for (std::size_t i = 0; i < c.size(); ++i) l += (c[(i + 1) % c.size()] - c[i]).norm();
@@ -43,8 +25,9 @@ double cord_ratio(const std::vector<Eigen::Vector3d>& c) {
   return total > 0 ? 1.0 - (c.back() - c.front()).norm() / total : 0.0;
 }
 
-// Diameter of the largest circle inside the closed curve, in its least-squares plane.
-double inscribed_diameter(const std::vector<Eigen::Vector3d>& c) {
+// The largest circle inside the closed curve, in its least-squares plane: its diameter and
+// centre.
+std::pair<double, Eigen::Vector3d> inscribed_circle(const std::vector<Eigen::Vector3d>& c) {
   Eigen::Vector3d mean = Eigen::Vector3d::Zero();
   for (const auto& p : c) mean += p;
   mean /= static_cast<double>(c.size());
@@ -60,6 +43,7 @@ double inscribed_diameter(const std::vector<Eigen::Vector3d>& c) {
   }
   const double step = std::max(box.sizes().maxCoeff() / 100.0, 1e-5);
   double best = 0.0;
+  Eigen::Vector2d centre = box.center();
   for (double x = box.min().x(); x <= box.max().x(); x += step) {
     for (double y = box.min().y(); y <= box.max().y(); y += step) {
       const Eigen::Vector2d q(x, y);
@@ -67,13 +51,32 @@ double inscribed_diameter(const std::vector<Eigen::Vector3d>& c) {
       double d = std::numeric_limits<double>::infinity();
       for (std::size_t i = 0; i < poly.size(); ++i)
         d = std::min(d, segment_distance(q, poly[i], poly[(i + 1) % poly.size()]));
-      best = std::max(best, d);
+      if (d > best) {
+        best = d;
+        centre = q;
+      }
     }
   }
-  return 2.0 * best;
+  return {2.0 * best, mean + centre.x() * e1 + centre.y() * e2};
 }
 
 }  // namespace
+
+double cross_section(const CollisionShape& s) {
+  switch (s.type) {
+    case CollisionShape::Type::kBox:
+    case CollisionShape::Type::kMesh: {
+      Eigen::Vector3d e = shape_bounds(s).sizes();
+      std::sort(e.data(), e.data() + 3);
+      return std::hypot(e[0], e[1]);
+    }
+    case CollisionShape::Type::kSphere:
+    case CollisionShape::Type::kCylinder:
+    case CollisionShape::Type::kCapsule:
+      return 2.0 * s.radius;
+  }
+  return 0.0;
+}
 
 HandSize hand_size(const RobotModel& model) {
   HandSize size;
@@ -116,7 +119,11 @@ HandSize hand_size(const RobotModel& model) {
   }
   size.closed_q = q.tail(model.hand_dof);
   double aperture = std::numeric_limits<double>::infinity();
-  for (const auto& c : curves.points) aperture = std::min(aperture, inscribed_diameter(c));
+  for (const auto& c : curves.points) {
+    const auto [diameter, centre] = inscribed_circle(c);
+    aperture = std::min(aperture, diameter);
+    size.closed_centre += centre / static_cast<double>(curves.points.size());
+  }
   size.closed_aperture =
       std::isfinite(aperture) ? std::max(0.0, aperture - size.finger_thickness) : 0.0;
   return size;

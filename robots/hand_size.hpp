@@ -19,7 +19,14 @@ struct HandSize {
   double closed_aperture = 0.0;
   /// The hand joints at that closure (the open pre-shape moved along the closing directions).
   Eigen::VectorXd closed_q;
+  /// Where a bar sits in the closed hand: the mean of those circles' centres, in the world frame
+  /// with the arm at its home pose (m).
+  Eigen::Vector3d closed_centre = Eigen::Vector3d::Zero();
 };
+
+/// The diameter of the circle around a shape's cross-section, across its longest axis (a mesh:
+/// its box's, in the mesh's frame): how wide a hole the link needs.
+double cross_section(const CollisionShape& s);
 
 /// Computes the sizes above. Finger closing follows each hand joint's `closing` direction in
 /// small steps from the open pre-shape, without an object, until every curve's cord ratio

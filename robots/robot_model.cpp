@@ -162,12 +162,6 @@ namespace robot_model_detail {
   throw InputError(file + ": " + what);
 }
 
-}  // namespace robot_model_detail
-
-namespace {
-
-using robot_model_detail::build_robot;
-
 std::string read_text_file(const std::filesystem::path& path, const std::string& what) {
   std::error_code ec;
   if (!std::filesystem::is_regular_file(path, ec))
@@ -182,6 +176,13 @@ std::string read_text_file(const std::filesystem::path& path, const std::string&
   ss << in.rdbuf();
   return ss.str();
 }
+
+}  // namespace robot_model_detail
+
+namespace {
+
+using robot_model_detail::build_robot;
+using robot_model_detail::read_text_file;
 
 RobotModel load_robot_unchecked(const std::string& name_or_path) {
   const auto names = builtin_robots();

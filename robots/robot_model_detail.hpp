@@ -4,6 +4,7 @@
 // files. Every problem is a one-line InputError naming the file.
 #pragma once
 
+#include <filesystem>
 #include <functional>
 #include <map>
 #include <string>
@@ -18,6 +19,10 @@ namespace claspplan::robots::robot_model_detail {
 
 /// Throws InputError "<file>: <what>".
 [[noreturn]] void fail(const std::string& file, const std::string& what);
+
+/// A text file's contents; InputError naming the file and `what` it should be when it is missing,
+/// unreadable or over 64 MB.
+std::string read_text_file(const std::filesystem::path& path, const std::string& what);
 
 /// Parses a URDF; its errors (reported through console_bridge) become the exception's message.
 urdf::ModelInterfaceSharedPtr parse_urdf(const std::string& text, const std::string& file);

@@ -62,7 +62,10 @@ TEST(ShippedRobots, VerifyTheRingInFrontOfTheHand) {
                                 "kr5_armar3",
                                 kUr5Allegro,
                                 kRobots + "/panda_allegro.yaml",
-                                kRobots + "/jaco_allegro.yaml"};
+                                kRobots + "/jaco_allegro.yaml",
+                                kRobots + "/drafted/ur5_allegro.yaml",
+                                kRobots + "/drafted/panda_allegro.yaml",
+                                kRobots + "/drafted/jaco_allegro.yaml"};
   for (const std::string& robot : robots) {
     const std::string start =
         robot.rfind("kr5_", 0) == 0 ? "start: [0, -1.5707963, 1.5707963, 0, 1.5707963, 0]\n" : "";
@@ -75,6 +78,78 @@ TEST(ShippedRobots, VerifyTheRingInFrontOfTheHand) {
                                  dir.file("ring_out"), "--json"});
     EXPECT_EQ(r.exit_code, 0) << robot << ": " << r.out << r.err;
   }
+}
+
+// `claspplan describe` on the UR5's and the Allegro hand's unmodified URDFs: the drafted
+// description, unedited, loads, finds the Allegro's thumb and turns it to oppose the fingers, and
+// its ring is verified; the committed drafts (examples/robots/drafted/) clasp the purse.
+TEST(DescribeCommand, DraftsARobotThatClaspsTheRingUnedited) {
+  TempDir dir;
+  const std::string urdfs = kRobots + "/example-robot-data/robots/";
+  const std::string out = dir.file("ur5_allegro.yaml");
+  const CliResult d =
+      run_cli({"describe", urdfs + "ur_description/urdf/ur5_robot.urdf", "--hand-urdf",
+               urdfs + "allegro_hand_description/urdf/allegro_right_hand.urdf", "--mount", "tool0",
+               "--mount-xyz", "0,0,0.095", "--samples", "200", "-o", out, "--json"});
+  ASSERT_EQ(d.exit_code, 0) << d.err;
+  const auto j = d.json();
+  EXPECT_EQ(j["arm_dof"].get<int>(), 6);
+  EXPECT_EQ(j["hand_dof"].get<int>(), 16);
+  ASSERT_EQ(j["fingers"].size(), 4u);
+  int thumbs = 0;
+  for (const auto& f : j["fingers"]) thumbs += f["thumb"].get<bool>();
+  EXPECT_EQ(thumbs, 1);
+  std::string guesses;
+  for (const auto& g : j["guesses"]) guesses += g.get<std::string>() + "\n";
+  EXPECT_NE(guesses.find("thumb: the finger of link_12.0"), std::string::npos) << guesses;
+  EXPECT_NE(guesses.find("joint_12.0 held at"), std::string::npos) << guesses;
+  EXPECT_GT(j["hand"]["closed_aperture"].get<double>(), 0.03);
+  const std::string ring =
+      dir.write("ring.yaml", "robot: " + out +
+                                 "\nobject:\n"
+                                 "  shape: {type: torus, major_radius: 0.1, minor_radius: 0.01}\n"
+                                 "  in_front_of_hand: 0.3\n");
+  const CliResult r = run_cli(
+      {"run", ring, "--max-cycles", "100", "--no-pictures", "--out", dir.file("ring"), "--json"});
+  EXPECT_EQ(r.exit_code, 0) << r.out << r.err;
+  // The same inputs and seed draft the same file.
+  const std::string again = dir.file("again.yaml");
+  ASSERT_EQ(run_cli({"describe", urdfs + "ur_description/urdf/ur5_robot.urdf", "--hand-urdf",
+                     urdfs + "allegro_hand_description/urdf/allegro_right_hand.urdf", "--mount",
+                     "tool0", "--mount-xyz", "0,0,0.095", "--samples", "200", "-o", again})
+                .exit_code,
+            0);
+  EXPECT_EQ(slurp(out), slurp(again));
+}
+
+TEST(DescribeCommand, TheCommittedDraftsClaspThePurse) {
+  TempDir dir;
+  for (const char* robot : {"ur5", "panda", "jaco"}) {
+    const CliResult r =
+        run_cli({"run", kRobots + "/scenarios/purse_1_" + robot + "_allegro.yaml", "--robot",
+                 kRobots + "/drafted/" + robot + "_allegro.yaml", "--seed", "2", "--max-cycles",
+                 "100", "--no-pictures", "--out", dir.file(robot), "--json"});
+    EXPECT_EQ(r.exit_code, 0) << robot << ": " << r.out << r.err;
+  }
+}
+
+TEST(DescribeCommand, BadInputIsExitTwoWithAReason) {
+  TempDir dir;
+  const std::string urdfs = kRobots + "/example-robot-data/robots/";
+  const CliResult missing = run_cli({"describe", dir.file("none.urdf"), "-o", dir.file("a.yaml")});
+  EXPECT_EQ(missing.exit_code, 2);
+  EXPECT_NE(missing.err.find("not found"), std::string::npos) << missing.err;
+  // An arm without a hand: nothing to draft, and the way out is named.
+  const CliResult arm =
+      run_cli({"describe", urdfs + "ur_description/urdf/ur5_robot.urdf", "-o", dir.file("b.yaml")});
+  EXPECT_EQ(arm.exit_code, 2);
+  EXPECT_NE(arm.err.find("--hand-root"), std::string::npos) << arm.err;
+  const CliResult mount = run_cli(
+      {"describe", urdfs + "ur_description/urdf/ur5_robot.urdf", "--hand-urdf",
+       urdfs + "allegro_hand_description/urdf/allegro_right_hand.urdf", "-o", dir.file("c.yaml")});
+  EXPECT_EQ(mount.exit_code, 2);
+  EXPECT_NE(mount.err.find("--mount"), std::string::npos) << mount.err;
+  EXPECT_EQ(run_cli({"describe", "--help"}).exit_code, 0);
 }
 
 }  // namespace

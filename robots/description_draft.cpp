@@ -1,0 +1,354 @@
+#include "robots/description_draft.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <map>
+#include <random>
+
+#include <Eigen/Geometry>
+
+#include "core/input_error.hpp"
+#include "core/random_draws.hpp"
+#include "robots/collision_world.hpp"
+#include "robots/description_draft_detail.hpp"
+#include "robots/hand_size.hpp"
+#include "robots/kinematics.hpp"
+#include "robots/robot_model_detail.hpp"
+
+namespace claspplan::robots {
+namespace {
+
+namespace fs = std::filesystem;
+using namespace robot_model_detail;
+using namespace draft_detail;
+
+// The URDF tree before any description: links, shapes and the joints' URDF records.
+struct Tree {
+  urdf::ModelInterfaceSharedPtr arm, hand;  // alive: `joints` points into them
+  RobotModel m;                             // links and shapes only
+  UrdfJoints joints;
+  std::vector<std::vector<int>> children;
+  std::vector<int> below;  // per link: actuated joints in its subtree, its own included
+
+  const urdf::Joint* joint(int link) const {
+    const auto it = joints.joint_of_link.find(m.links[link].name);
+    return it == joints.joint_of_link.end() ? nullptr : it->second;
+  }
+  // A joint the user drives: revolute, continuous or prismatic, and not a mimic of another.
+  bool actuated(int link) const {
+    const urdf::Joint* j = joint(link);
+    return j && !j->mimic &&
+           (j->type == urdf::Joint::REVOLUTE || j->type == urdf::Joint::CONTINUOUS ||
+            j->type == urdf::Joint::PRISMATIC);
+  }
+  int link(const std::string& name, const std::string& flag) const {
+    const int i = m.find_link(name);
+    if (i < 0) throw InputError(flag + ": no link '" + name + "' in the URDF");
+    return i;
+  }
+};
+
+Tree read_tree(const DraftOptions& o) {
+  Tree t;
+  t.arm = parse_urdf(read_text_file(o.urdf, "URDF file"), o.urdf.string());
+  if (!o.replaces.empty() && o.hand_urdf.empty())
+    throw InputError("--replaces leaves the arm's gripper out for --hand-urdf's hand: give both");
+  t.joints = read_urdf_tree(*t.arm, o.urdf.string(), t.m, o.replaces);
+  if (!o.hand_urdf.empty()) {
+    if (o.mount.empty()) throw InputError("--hand-urdf needs --mount LINK (the arm link it is on)");
+    t.hand = parse_urdf(read_text_file(o.hand_urdf, "hand URDF file"), o.hand_urdf.string());
+    Eigen::Isometry3d origin = Eigen::Isometry3d::Identity();
+    origin.translation() = o.mount_xyz;
+    attach_urdf_tree(*t.hand, o.hand_urdf.string(), t.link(o.mount, "--mount"), origin, t.m,
+                     t.joints);
+  }
+  const int n = static_cast<int>(t.m.links.size());
+  t.children.assign(n, {});
+  t.below.assign(n, 0);
+  for (int i = n - 1; i >= 0; --i) {  // parents come first: children are done before them
+    t.below[i] += t.actuated(i) ? 1 : 0;
+    if (t.m.links[i].parent >= 0) {
+      t.children[t.m.links[i].parent].insert(t.children[t.m.links[i].parent].begin(), i);
+      t.below[t.m.links[i].parent] += t.below[i];
+    }
+  }
+  return t;
+}
+
+// The children of `link` whose subtrees hold actuated joints.
+std::vector<int> moving_branches(const Tree& t, int link) {
+  std::vector<int> out;
+  for (int c : t.children[link])
+    if (t.below[c] > 0) out.push_back(c);
+  return out;
+}
+
+int find_hand_root(const Tree& t, const DraftOptions& o) {
+  if (!o.hand_root.empty()) return t.link(o.hand_root, "--hand-root");
+  // A mounted hand's fingers are below its own root, whatever else the arm carries.
+  for (int link = t.hand ? t.m.link_index(t.hand->getRoot()->name) : 0;;) {
+    const std::vector<int> branches = moving_branches(t, link);
+    if (branches.size() >= 2) return link;
+    if (branches.empty())
+      throw InputError(
+          "no hand found: no link has two or more branches with moving joints (a hand's "
+          "fingers); name the hand's root link with --hand-root");
+    link = branches[0];
+  }
+}
+
+// A finger: from a branch of the hand's root down to a leaf, following the branch with the most
+// actuated joints (then the first), so that a fixed fingertip link ends it.
+std::vector<int> finger_chain(const Tree& t, int first) {
+  std::vector<int> chain{first};
+  while (!t.children[chain.back()].empty()) {
+    const auto& c = t.children[chain.back()];
+    chain.push_back(*std::max_element(c.begin(), c.end(),
+                                      [&](int a, int b) { return t.below[a] < t.below[b]; }));
+  }
+  return chain;
+}
+
+JointDraft joint_draft(const Tree& t, int link) {
+  const urdf::Joint* j = t.joint(link);
+  JointDraft d;
+  d.name = j->name;
+  if (j->type == urdf::Joint::CONTINUOUS || !j->limits) {
+    d.lower = -0.5 * kContinuousRange;
+    d.upper = 0.5 * kContinuousRange;
+  } else {
+    d.lower = j->limits->lower;
+    d.upper = j->limits->upper;
+  }
+  d.open = std::clamp(0.0, d.lower, d.upper);
+  return d;
+}
+
+RobotModel load_draft(const Draft& d, const DraftOptions& o) {
+  const fs::path dir = fs::absolute(o.out).parent_path();
+  return build_robot(
+      to_yaml(d), o.out.string(),
+      [&](const std::string& file) {
+        const fs::path p = dir / file;
+        return std::make_pair(p.string(), read_text_file(p, "URDF file"));
+      },
+      o.out.string());
+}
+
+std::string relative_to_out(const fs::path& file, const DraftOptions& o) {
+  return fs::absolute(file)
+      .lexically_normal()
+      .lexically_relative(fs::absolute(o.out).parent_path().lexically_normal())
+      .generic_string();
+}
+
+// The part of the draft the URDF's tree decides: arm chain, hand joints, fingers.
+Draft topology(const Tree& t, const DraftOptions& o, int root) {
+  Draft d;
+  d.name = !o.name.empty() ? o.name : t.arm->getName() + (t.hand ? "_" + t.hand->getName() : "");
+  d.urdf = relative_to_out(o.urdf, o);
+  if (t.hand) {
+    d.hand_urdf = relative_to_out(o.hand_urdf, o);
+    d.mount = o.mount;
+    d.mount_xyz = o.mount_xyz;
+    d.replaces = o.replaces;
+  }
+  d.mesh_hulls = o.mesh_hulls;
+  std::vector<int> path;
+  for (int l = root; l >= 0; l = t.m.links[l].parent) path.insert(path.begin(), l);
+  for (int l : path)
+    if (t.actuated(l)) d.arm.push_back(joint_draft(t, l));
+  d.base_link = t.m.links[root].name;
+  d.tcp = {d.base_link};
+  if (d.arm.empty()) throw InputError("no arm joints above the hand's root '" + d.base_link + "'");
+  if (!o.home.empty() && o.home.size() != d.arm.size())
+    throw InputError("--home: " + std::to_string(o.home.size()) + " values for the arm's " +
+                     std::to_string(d.arm.size()) + " joints");
+  for (std::size_t i = 0; i < o.home.size(); ++i) d.arm[i].open = o.home[i];
+  d.home_given = !o.home.empty();
+  const int parent = t.m.links[root].parent;
+  d.tool_link = t.hand                           ? o.mount
+                : t.actuated(root) || parent < 0 ? d.base_link
+                                                 : t.m.links[parent].name;
+  // Every actuated joint below the root is a hand joint, in the tree's order.
+  std::vector<int> stack(t.children[root].rbegin(), t.children[root].rend());
+  while (!stack.empty()) {
+    const int l = stack.back();
+    stack.pop_back();
+    if (t.actuated(l)) d.hand.push_back(joint_draft(t, l));
+    stack.insert(stack.end(), t.children[l].rbegin(), t.children[l].rend());
+  }
+  for (int branch : moving_branches(t, root)) {
+    FingerDraft f;
+    f.chain = finger_chain(t, branch);
+    for (int l : f.chain) {
+      f.links.push_back(t.m.links[l].name);
+      if (t.actuated(l)) f.joints.push_back(t.joint(l)->name);
+    }
+    f.name = "finger_" + std::to_string(d.fingers.size() + 1);
+    d.fingers.push_back(f);
+  }
+  return d;
+}
+
+// The fingertip: the far end of the last link's shapes along the finger (from the previous link's
+// origin through the last one's), else the last link's origin.
+CurvePoint tip_point(const Tree& t, const std::vector<int>& chain) {
+  const int leaf = chain.back();
+  const Link& link = t.m.links[leaf];
+  Eigen::Vector3d u = link.origin.linear().transpose() * link.origin.translation();
+  u = u.norm() > 1e-6 ? u.normalized() : Eigen::Vector3d::UnitZ();
+  double reach = 0.0;
+  for (int s : link.shapes) {
+    const CollisionShape& shape = t.m.shapes[s];
+    const Eigen::AlignedBox3d box = shape_bounds(shape);
+    for (int c = 0; c < 8; ++c) {
+      const Eigen::Vector3d corner = box.corner(static_cast<Eigen::AlignedBox3d::CornerType>(c));
+      reach = std::max(reach, (shape.origin * corner).dot(u));
+    }
+  }
+  CurvePoint p{link.name, reach * u, reach > 1e-4};
+  return p;
+}
+
+// The mean of the curves' 1 - cord / closed length (eq. 2's factor; eq. 4 averages) at q.
+double mean_cord_ratio(const RobotModel& m, const Eigen::VectorXd& q) {
+  RobotData data(m);
+  FingerCurvesData curves;
+  finger_curves(m, q, data, curves, false);
+  double sum = 0.0;
+  for (const auto& c : curves.points) {
+    double length = (c.back() - c.front()).norm();
+    for (std::size_t i = 1; i < c.size(); ++i) length += (c[i] - c[i - 1]).norm();
+    sum += length > 0 ? 1.0 - (c.back() - c.front()).norm() / length : 0.0;
+  }
+  return curves.points.empty() ? 0.0 : sum / static_cast<double>(curves.points.size());
+}
+
+// A closed hand should enclose a 3 cm bar (a typical handle) with 1 cm to spare.
+constexpr double kWantedAperture = 0.04;
+
+// The highest goal the closing hand reaches with kWantedAperture left inside it (else the one
+// that leaves the most), and the tcp in the middle of the hand closed to it.
+void choose_goal(Draft& d, const DraftOptions& o, std::vector<std::string>& guesses) {
+  RobotModel m = load_draft(d, o);
+  double best = -1.0, best_goal = 0.0;
+  Eigen::Vector3d centre = Eigen::Vector3d::Zero();  // of the hand closed to the goal chosen
+  for (double goal : {0.9, 0.85, 0.8, 0.75, 0.7, 0.65, 0.6, 0.55, 0.5}) {
+    m.vlink_goal = goal;
+    const HandSize size = hand_size(m);
+    Eigen::VectorXd q = m.home;
+    q.tail(m.hand_dof) = size.closed_q;
+    if (mean_cord_ratio(m, q) < goal - 1e-3) continue;  // the fingers' limits stop short of it
+    if (size.closed_aperture > best + 1e-9) {
+      best = size.closed_aperture;
+      best_goal = goal;
+      centre = size.closed_centre;
+    }
+    if (size.closed_aperture >= kWantedAperture) break;
+  }
+  char note[200];
+  if (best < 0) {
+    d.vlink_goal = 0.5;
+    d.vlink_note = "guessed: the closing fingers never reach 0.5: check the closing directions";
+    guesses.push_back("vlink_goal: no goal from 0.9 down to 0.5 is reached when the fingers close");
+  } else {
+    d.vlink_goal = best_goal;
+    std::snprintf(note, sizeof note,
+                  "guessed: the highest goal that leaves the closed hand %.1f cm inside (%s 4 cm)",
+                  100.0 * best, best >= kWantedAperture ? ">=" : "the most, short of");
+    d.vlink_note = note;
+    guesses.push_back("vlink_goal " + draft_number(best_goal) + ": " + std::string(note).substr(9));
+  }
+  RobotData data(m);
+  forward_kinematics(m, m.home, data);
+  const Eigen::Isometry3d& root = data.link_poses[m.link_index(d.base_link)];
+  d.tcp = {d.base_link, root.inverse() * centre, true};
+}
+
+// MoveIt's rule: pairs in contact at the (given) home pose or in nearly every random
+// configuration are allowed; those never in contact are counted (FCL checks them quickly anyway).
+void allow_pairs(Draft& d, const DraftOptions& o, DescriptionDraft& out) {
+  const RobotModel m = load_draft(d, o);
+  CollisionWorld world(m);
+  RobotData data(m);
+  forward_kinematics(m, m.home, data);
+  const auto at_home = world.self_contacts(data);
+  std::map<std::pair<std::string, std::string>, int> seen;  // samples in contact, per pair
+  for (const auto& pair : at_home) seen[pair] = 0;
+  std::mt19937_64 rng(o.seed);
+  Eigen::VectorXd q = m.home;
+  for (int k = 0; k < o.samples; ++k) {
+    for (int j = 0; j < m.dof(); ++j) {
+      const double lo = std::max(m.joints[j].lower, -M_PI), hi = std::min(m.joints[j].upper, M_PI);
+      q[j] = lo + uniform01(rng()) * (hi - lo);
+    }
+    forward_kinematics(m, q, data);
+    for (const auto& pair : world.self_contacts(data)) ++seen[pair];
+  }
+  int touched = 0;
+  std::string at_guessed_home;
+  for (const auto& [pair, count] : seen) {
+    ++touched;
+    const bool home = std::find(at_home.begin(), at_home.end(), pair) != at_home.end();
+    const bool always = o.samples > 0 && count >= 0.95 * o.samples;
+    // Contacts at a guessed home are a pose to change, not pairs to allow.
+    if (home && o.home.empty() && !always) {
+      at_guessed_home += (at_guessed_home.empty() ? "" : ", ") + pair.first + " / " + pair.second;
+      continue;
+    }
+    if (!home && !always) continue;
+    d.allowed.push_back(pair);
+    out.allowed.push_back(pair.first + " / " + pair.second +
+                          (always ? " (in contact in " + std::to_string(count) + " of " +
+                                        std::to_string(o.samples) + " random configurations)"
+                                  : " (in contact at the home pose)"));
+  }
+  if (!at_guessed_home.empty())
+    out.guesses.push_back("home: links in contact at the guessed home (" + at_guessed_home +
+                          "): give the vendor's home with --home, or write a free one");
+  // The pairs checked: links with shapes, not joined through links without (CollisionWorld).
+  const auto shaped_parent = [&](int l) {
+    int p = m.links[l].parent;
+    while (p >= 0 && m.links[p].shapes.empty()) p = m.links[p].parent;
+    return p;
+  };
+  int pairs = 0;
+  for (int a = 0; a < static_cast<int>(m.links.size()); ++a)
+    for (int b = a + 1; b < static_cast<int>(m.links.size()); ++b)
+      pairs += !m.links[a].shapes.empty() && !m.links[b].shapes.empty() && shaped_parent(b) != a &&
+               shaped_parent(a) != b;
+  out.never_colliding_pairs = std::max(0, pairs - touched);
+}
+
+}  // namespace
+
+DescriptionDraft draft_description(const DraftOptions& o) {
+  if (o.samples < 0) throw InputError("--samples must be >= 0");
+  DescriptionDraft out;
+  const Tree t = read_tree(o);
+  const int root = find_hand_root(t, o);
+  Draft d = topology(t, o, root);
+  if (d.fingers.size() < 2)
+    throw InputError("the hand's root '" + d.base_link +
+                     "' has fewer than two fingers (branches with moving joints)");
+  if (o.hand_root.empty())
+    out.guesses.push_back("hand root: " + d.base_link +
+                          ", the first link with two or more moving branches (--hand-root)");
+  for (FingerDraft& f : d.fingers) f.tip = tip_point(t, f.chain);
+  // A first model, to see the hand: every finger against the next through the palm (the last
+  // one a thumb for now).
+  d.fingers.back().thumb = true;
+  for (std::size_t f = 0; f + 1 < d.fingers.size(); ++f)
+    d.curves.push_back({"draft_" + std::to_string(f + 1),
+                        {d.fingers[f].tip, {d.base_link}, d.fingers[f + 1].tip}});
+  shape_hand(d, load_draft(d, o), out.guesses);
+  choose_goal(d, o, out.guesses);
+  allow_pairs(d, o, out);
+  out.yaml = to_yaml(d);
+  out.model = load_draft(d, o);
+  return out;
+}
+
+}  // namespace claspplan::robots
