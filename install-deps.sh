@@ -13,6 +13,8 @@ packages=(
   liboctomap-dev                         # the sensed space as an OcTree, collided by FCL (robots)
   libassimp-dev                          # COLLADA (.dae) collision meshes of public URDFs (robots)
   libqhull-dev                           # convex hulls of robot meshes (robots, collision.mesh_hulls)
+  python3-dev pybind11-dev python3-numpy # the Python package (examples/python)
+  python3-pytest python3-matplotlib      # its tests and examples
   libgtest-dev libbenchmark-dev          # tests and kernel benchmarks
   clang-14 libclang-rt-14-dev            # libFuzzer targets (test/fuzz, .ci/fuzz.sh)
 )

@@ -1,0 +1,161 @@
+"""The Python package (issue 36): arrays in and out, errors as exceptions with the command line's
+reasons, the same results as the command line for the same inputs and seed, and the GIL released
+by long calls. Run by ctest with PYTHONPATH=build/python, CLASPPLAN_BIN and CLASPPLAN_SOURCE."""
+
+import json
+import os
+import subprocess
+import sys
+import threading
+import time
+
+import numpy as np
+import pytest
+
+import claspplan
+
+BIN = os.environ.get("CLASPPLAN_BIN", "build/claspplan")
+SOURCE = os.environ.get("CLASPPLAN_SOURCE", ".")
+EXAMPLES = os.path.join(SOURCE, "examples")
+
+
+def cli(*args):
+    return subprocess.run([BIN, *args], capture_output=True, text=True, check=False)
+
+
+def ring(radius=0.1, centre=(0, 0, 0), axis="z", n=64):
+    t = np.linspace(0, 2 * np.pi, n, endpoint=False)
+    c, s = radius * np.cos(t), radius * np.sin(t)
+    z = np.zeros_like(t)
+    p = {"z": (c, s, z), "y": (c, z, s)}[axis]
+    return np.stack(p, axis=1) + np.asarray(centre)
+
+
+def test_robot_arrays_match_the_command_line():
+    robot = claspplan.Robot("kr5_sdh")
+    assert robot.dof == robot.arm_dof + robot.hand_dof == len(robot.joint_names)
+    assert robot.home.shape == (robot.dof,)
+    assert np.all(robot.lower <= robot.home) and np.all(robot.home <= robot.upper)
+    q = robot.home.copy()
+    q[: robot.arm_dof] = 0.0
+    poses = robot.forward_kinematics(q)
+    expected = json.loads(cli("robot", "kr5_sdh", "--q=0,0,0,0,0,0", "--json").stdout)
+    assert poses["tool0"].shape == (4, 4)
+    np.testing.assert_allclose(poses["tool0"][:3, 3], expected["tool0"]["position"], atol=1e-12)
+    curves = robot.finger_curves(q)
+    assert len(curves) == len(expected["finger_curves"])
+    for mine, theirs in zip(curves, expected["finger_curves"]):
+        np.testing.assert_allclose(mine, theirs, atol=1e-12)
+    assert robot.self_collisions(q) == []
+    size = robot.hand_size()
+    assert size["closed_aperture"] > 0.02 and size["closed_q"].shape == (robot.hand_dof,)
+
+
+def test_linking_of_arrays():
+    a = ring()
+    b = ring(centre=(0.1, 0, 0), axis="y")  # through a's disc: linked once
+    assert abs(claspplan.linking_number(a, b)) == 1
+    assert claspplan.linking_number(a, ring(centre=(0.5, 0, 0), axis="y")) == 0
+    assert abs(claspplan.gauss_linking(a, b)) == pytest.approx(1.0, abs=1e-6)
+    finger = b[: len(b) * 3 // 4]  # open: three quarters of the ring, closed by its cord
+    assert 0.0 < abs(claspplan.virtual_linking(a, finger)) < 1.0
+
+
+def test_errors_raise_with_the_command_lines_reason():
+    with pytest.raises(claspplan.InputError) as e:
+        claspplan.Robot("no_such_robot")
+    assert str(e.value) in cli("robot", "no_such_robot").stderr
+    assert isinstance(e.value, ValueError)
+    robot = claspplan.Robot("kr5_icub")
+    with pytest.raises(claspplan.InputError, match="values for"):
+        robot.forward_kinematics(np.zeros(3))
+    with pytest.raises(claspplan.InputError, match=r"\(n, 3\)"):
+        claspplan.linking_number(np.zeros((4, 2)), ring())
+    with pytest.raises(claspplan.InputError):
+        claspplan.perceive(depth=[(np.zeros((48, 64)), np.eye(3), np.eye(4))])
+    missing = os.path.join(EXAMPLES, "scenarios", "missing.yaml")
+    with pytest.raises(claspplan.InputError) as e:
+        claspplan.run(missing)
+    assert str(e.value) in cli("run", missing).stderr
+
+
+def test_perceive_depth_arrays_as_the_command_line_does():
+    view = os.path.join(EXAMPLES, "depth", "bag_2")
+    depth = [claspplan.read_depth(os.path.join(view, f"view_{i}.png"),
+                                  os.path.join(view, f"view_{i}.yaml")) for i in range(2)]
+    assert depth[0][0].dtype == np.float32 and depth[0][0].ndim == 2
+    crop = ((0.2, -0.4, 0.01), (0.95, 0.4, 0.7))
+    mine = claspplan.perceive(depth=[d[:3] for d in depth], crop=crop, robot="kr5_sdh",
+                              no_reading_is_free=depth[0][3])
+    args = []
+    for i in range(2):
+        args += [os.path.join(view, f"view_{i}.png"), "--camera", os.path.join(view, f"view_{i}.yaml")]
+    theirs = json.loads(cli("loops", *args, "--crop", "0.2,-0.4,0.01,0.95,0.4,0.7", "--robot",
+                            "kr5_sdh", "--json").stdout)
+    assert mine["beta1"] == theirs["beta1"]
+    assert mine["d"] == pytest.approx(theirs["d"], rel=1e-12)
+    assert [l["verdict"] for l in mine["loops"]] == [l["verdict"] for l in theirs["loops"]]
+    assert mine["loops"][0]["claspable"]
+    assert mine["targets"].shape[1] == 3 and len(mine["targets"]) > 0
+
+
+def test_a_cloud_without_its_sensor_cannot_tell_a_hole():
+    cloud = claspplan.read_cloud(os.path.join(EXAMPLES, "clouds", "osd_learn0.pcd"))
+    points = cloud["points"]
+    assert points.shape[1] == 3 and len(points) == cloud["width"] * cloud["height"]
+    # A torus sampled densely: a hole, but no sensor origin -> never claspable, and said why.
+    t, s = np.meshgrid(np.linspace(0, 2 * np.pi, 90), np.linspace(0, 2 * np.pi, 30))
+    torus = np.stack([(0.1 + 0.02 * np.cos(s)) * np.cos(t), (0.1 + 0.02 * np.cos(s)) * np.sin(t),
+                      0.02 * np.sin(s) + 0.3], axis=-1).reshape(-1, 3)
+    found = claspplan.perceive(points=torus)
+    assert found["beta1"] >= 1
+    assert not any(l["claspable"] for l in found["loops"])
+    assert any("sensor origin" in l["reason"] for l in found["loops"])
+
+
+def test_run_equals_the_command_line_for_the_same_seed(tmp_path):
+    scenario = os.path.join(EXAMPLES, "scenarios", "purse_1_sdh.yaml")
+    mine = claspplan.run(scenario, seed=2, max_cycles=60, out_dir=str(tmp_path / "py"))
+    done = cli("run", scenario, "--seed", "2", "--max-cycles", "60", "--no-pictures", "--out",
+               str(tmp_path / "cli"), "--json")
+    assert done.returncode == mine["exit_code"] == 0
+    theirs = json.loads(done.stdout)
+    for key in set(theirs) - {"seconds", "out"}:  # the time taken, the output folder
+        assert mine[key] == theirs[key], key
+    with open(tmp_path / "cli" / "result.json", encoding="utf-8") as f:
+        result = json.load(f)
+    for key in ("waypoints", "final_q", "loop", "targets", "verified", "virtual_linking"):
+        assert mine["result"][key] == result[key], key
+    assert mine["path"].shape == (len(result["waypoints"]), claspplan.Robot("kr5_sdh").dof)
+    np.testing.assert_array_equal(mine["final_q"], result["final_q"])
+
+
+def test_long_calls_release_the_gil():
+    scenario = os.path.join(EXAMPLES, "scenarios", "purse_1_sdh.yaml")
+    span = {}
+
+    def plan():
+        span["start"] = time.monotonic()
+        claspplan.run(scenario, seed=1, max_cycles=40)
+        span["end"] = time.monotonic()
+
+    worker = threading.Thread(target=plan)
+    ticks = []
+    worker.start()
+    while worker.is_alive():
+        ticks.append(time.monotonic())
+        time.sleep(0.001)
+    worker.join()
+    # The interpreter kept running while the planner ran in C++: with the GIL held, the main
+    # thread would get at most a tick or two in the call's Python prologue.
+    assert sum(span["start"] < t < span["end"] for t in ticks) >= 20
+
+
+@pytest.mark.parametrize("script", ["plan_from_depth.py", "cloud_loops.py"])
+def test_examples_write_their_pictures(tmp_path, script):
+    out = tmp_path / (script[:-3] + ".png")
+    done = subprocess.run([sys.executable, os.path.join(EXAMPLES, "python", script), str(out)],
+                          capture_output=True, text=True, check=False,
+                          env=dict(os.environ, MPLBACKEND="Agg"))
+    assert done.returncode == 0, done.stderr
+    assert out.stat().st_size > 10000
