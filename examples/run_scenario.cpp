@@ -147,6 +147,7 @@ tsrrt::ClaspRequest clasp_request(const Scenario& s, const RunOptions& options,
   request.seed = options.seed;
   request.max_cycles = options.max_cycles;
   request.time_limit = options.time_limit;
+  request.stop = options.stop;
   request.name = s.path;
   return request;
 }

@@ -4,6 +4,7 @@
 #pragma once
 
 #include <cstdint>
+#include <functional>
 #include <optional>
 #include <string>
 
@@ -24,7 +25,8 @@ struct RunOptions {
   bool controller_only = false;
   tsrrt::ClaspSearch search;  ///< replaces TS-RRT when set (the benchmark's baselines)
   bool pictures = true;
-  bool quiet = false;  ///< no progress lines on stderr
+  bool quiet = false;          ///< no progress lines on stderr
+  std::function<bool()> stop;  ///< ends the search early (tsrrt::ClaspRequest::stop)
 };
 
 struct RunOutcome {

@@ -88,6 +88,8 @@ struct ClaspRequest {
   /// time_limit is given too. Results then do not depend on the machine's speed or load.
   std::optional<int> max_cycles;
   std::optional<double> time_limit;  ///< seconds: replaces the planner's time limit
+  /// kPlan: polled during the search; true ends it early (PlannerParameters::stop).
+  std::function<bool()> stop;
 
   /// Optional progress lines (perception steps, clasp candidates, ...).
   std::function<void(const std::string&)> progress;

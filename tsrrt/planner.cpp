@@ -182,7 +182,8 @@ class TsRrt {
     if (!result_.success) {
       result_.cycles = std::min(result_.cycles, p_.max_cycles);
       result_.reason =
-          (result_.timed_out
+          (result_.stopped ? std::string("search stopped by the caller")
+           : result_.timed_out
                ? "no clasp found within the time limit (" + format_seconds(p_.time_limit) + " s)"
                : "no clasp found within " + std::to_string(p_.max_cycles) + " cycles") +
           ": " + describe(result_.outcomes);
@@ -200,6 +201,7 @@ class TsRrt {
     if (p_.time_limit > 0.0 && since(start_) >= p_.time_limit) {
       result_.timed_out = true;
     }
+    if (!result_.timed_out && p_.stop && p_.stop()) result_.timed_out = result_.stopped = true;
     return result_.timed_out;
   }
 

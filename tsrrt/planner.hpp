@@ -4,6 +4,7 @@
 #pragma once
 
 #include <cstdint>
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -19,6 +20,9 @@ struct PlannerParameters {
   /// K. Effectively unbounded by default: the time limit bounds the search.
   int max_cycles = 100000;
   double time_limit = 10.0;  ///< wall-clock limit in seconds; 0 = none
+  /// Polled with the time limit: true ends the search as the limit would (a caller's cancel: a
+  /// GUI's button, Ctrl-C in Python). It is called at every controller step: keep it cheap.
+  std::function<bool()> stop;
   /// Controller steps per TS-EXTEND, each kept as a node: with the controller's 2 cm position
   /// cap a one-step extension barely explores, so an extension runs up to ~20 cm.
   int extend_steps = 10;
@@ -91,6 +95,7 @@ struct PlanResult {
   int rejected_goals = 0;  ///< nodes in goal tolerance that PlanningProblem::accept() refused
   ConnectOutcomes outcomes;
   bool timed_out = false;
+  bool stopped = false;  ///< ended by PlannerParameters::stop
   /// The tree, for pictures: each node's task point and parent.
   std::vector<TaskPoint> tree_points;
   std::vector<int> tree_parents;

@@ -2,12 +2,16 @@
 // arrays, and whole scenario runs. The package `claspplan` (claspplan/__init__.py) wraps it in
 // Python terms. Long calls release the GIL; malformed input raises claspplan.InputError (a
 // ValueError) with the one-line reason the command line prints.
+#include <chrono>
+#include <memory>
+
 #include <pybind11/eigen.h>
 #include <pybind11/numpy.h>
 #include <pybind11/pybind11.h>
 #include <pybind11/stl.h>
 
 #include "core/input_error.hpp"
+#include "examples/result_file.hpp"
 #include "examples/run_scenario.hpp"
 #include "examples/scenario.hpp"
 #include "perception/pipeline.hpp"
@@ -17,6 +21,7 @@
 #include "robots/kinematics.hpp"
 #include "robots/robot_model.hpp"
 #include "servo/linking.hpp"
+#include "tsrrt/clasp_setup.hpp"
 
 namespace py = pybind11;
 
@@ -25,6 +30,7 @@ namespace {
 
 using Robot = std::shared_ptr<robots::RobotModel>;  // pybind11 holds no pointer to const
 using Matrix = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>;
+using DepthArray = py::array_t<float, py::array::c_style | py::array::forcecast>;
 
 // An (n x 3) array as points; `what` names it in the error.
 std::vector<Eigen::Vector3d> points_of(const Matrix& a, const std::string& what) {
@@ -84,9 +90,8 @@ std::vector<std::pair<std::string, std::string>> self_collisions(const Robot& m,
 
 // One depth view from an (h x w) depth array in metres (0 or NaN: no reading), the intrinsics and
 // the camera's pose in the world (optical frame: z forward, x right, y down).
-perception::DepthView depth_view(
-    const py::array_t<float, py::array::c_style | py::array::forcecast>& depth,
-    const Eigen::Matrix3d& K, const Eigen::Matrix4d& pose, bool no_reading_is_free) {
+perception::DepthView depth_view(const DepthArray& depth, const Eigen::Matrix3d& K,
+                                 const Eigen::Matrix4d& pose, bool no_reading_is_free) {
   if (depth.ndim() != 2) throw InputError("depth: expected an (h, w) array of metres");
   perception::DepthView v;
   v.camera.height = static_cast<int>(depth.shape(0));
@@ -117,8 +122,26 @@ struct PerceiveArgs {
   std::uint64_t seed = 1;
 };
 
-// The perception pipeline (paper Sec. IV-A) with the sensed-space rules of the command line.
-perception::ObjectModel perceive(const PerceiveArgs& a) {
+using DepthInputs = std::vector<std::tuple<DepthArray, Eigen::Matrix3d, Eigen::Matrix4d>>;
+using CloudInputs = std::vector<std::pair<Matrix, std::optional<Eigen::Vector3d>>>;
+using Crop = std::optional<Eigen::Matrix<double, 6, 1>>;
+
+PerceiveArgs object_args(const DepthInputs& depth, const CloudInputs& clouds, const Crop& crop,
+                         int points, double d, std::uint64_t seed, bool no_reading_is_free) {
+  PerceiveArgs a;
+  for (const auto& [image, K, pose] : depth)
+    a.views.push_back(depth_view(image, K, pose, no_reading_is_free));
+  a.clouds = clouds;
+  a.crop = crop;
+  a.points = points;
+  a.d = d;
+  a.seed = seed;
+  return a;
+}
+
+// The arrays as the pipeline's inputs: clouds with a sensor origin become depth views of it (the
+// sensed-space rules of the command line), those without stay points.
+perception::PerceptionInputs inputs_of(const PerceiveArgs& a) {
   perception::PerceptionInputs in;
   in.depth_views = a.views;
   for (const auto& [array, origin] : a.clouds) {
@@ -130,6 +153,10 @@ perception::ObjectModel perceive(const PerceiveArgs& a) {
     else
       in.clouds.push_back(std::move(pts));
   }
+  return in;
+}
+
+perception::PerceptionOptions options_of(const PerceiveArgs& a) {
   perception::PerceptionOptions o;
   o.points = a.points;
   o.d = a.d;
@@ -140,7 +167,7 @@ perception::ObjectModel perceive(const PerceiveArgs& a) {
     o.finger_thickness = size.finger_thickness;
     o.closed_aperture = size.closed_aperture;
   }
-  return perception::build_object_model(in, o);
+  return o;
 }
 
 py::dict object_dict(const perception::ObjectModel& m) {
@@ -174,6 +201,117 @@ py::dict object_dict(const perception::ObjectModel& m) {
   return out;
 }
 
+// Ctrl-C during a search: the planner polls this (tsrrt::ClaspRequest::stop) on the calling
+// thread; at most every 50 ms it takes the GIL and lets Python run its signal handlers. When one
+// raised (KeyboardInterrupt), the search ends and the call rethrows it.
+class Interrupt {
+ public:
+  std::function<bool()> poll() {
+    return [state = state_] {
+      if (state->raised) return true;
+      const auto now = std::chrono::steady_clock::now();
+      if (now < state->next) return false;
+      state->next = now + std::chrono::milliseconds(50);
+      py::gil_scoped_acquire gil;
+      state->raised = PyErr_CheckSignals() != 0;
+      return state->raised;
+    };
+  }
+  // With the GIL held, after the call.
+  void rethrow() const {
+    if (state_->raised) throw py::error_already_set();
+  }
+
+ private:
+  struct State {
+    bool raised = false;
+    std::chrono::steady_clock::time_point next;
+  };
+  std::shared_ptr<State> state_ = std::make_shared<State>();
+};
+
+struct PlanArgs {
+  PerceiveArgs object;  // its robot stays empty: the planner sizes the loops for the robot itself
+  Eigen::VectorXd start;
+  std::vector<std::pair<Eigen::Vector3d, Eigen::Vector3d>> boxes;  // (size, centre)
+  int targets = 12;
+  std::optional<Eigen::Vector3d> near;
+  std::optional<double> goal_linking;
+  std::optional<int> pre_expansions, max_cycles;
+  std::optional<double> random_probability, time_limit;
+};
+
+const char* status_name(tsrrt::ClaspStatus s) {
+  switch (s) {
+    case tsrrt::ClaspStatus::kSuccess:
+      return "success";
+    case tsrrt::ClaspStatus::kNoClaspableLoop:
+      return "no_claspable_loop";
+    case tsrrt::ClaspStatus::kNoClasp:
+      break;
+  }
+  return "no_clasp";
+}
+
+// tsrrt::plan_clasp on arrays; the result in arrays and the verification as run's JSON text.
+py::dict plan(const Robot& robot, const PlanArgs& a) {
+  tsrrt::ClaspRequest r;
+  r.robot = robot;
+  r.start = a.start;
+  r.object = inputs_of(a.object);
+  r.perception = options_of(a.object);
+  r.perception.targets = a.targets;
+  for (const auto& [size, centre] : a.boxes) {
+    tsrrt::EnvironmentBox box;
+    box.size = size;
+    box.pose.translation() = centre;
+    r.environment.push_back(box);
+  }
+  r.loop_hint = a.near;
+  r.goal_linking = a.goal_linking;
+  if (a.pre_expansions) r.planning.planner.pre_expansions = *a.pre_expansions;
+  if (a.random_probability) r.planning.planner.random_probability = *a.random_probability;
+  r.seed = a.object.seed;
+  r.max_cycles = a.max_cycles;
+  r.time_limit = a.time_limit;
+  Interrupt interrupt;
+  r.stop = interrupt.poll();
+  tsrrt::ClaspResult result;
+  {
+    py::gil_scoped_release release;
+    result = tsrrt::plan_clasp(r);
+  }
+  interrupt.rethrow();
+  py::dict out;
+  out["status"] = status_name(result.status);
+  out["verified"] = result.verified;
+  out["reason"] = result.reason;
+  Matrix path(static_cast<Eigen::Index>(result.motion.waypoints.size()), robot->dof());
+  for (size_t i = 0; i < result.motion.waypoints.size(); ++i)
+    path.row(static_cast<Eigen::Index>(i)) = result.motion.waypoints[i].transpose();
+  out["path"] = path;
+  out["final_q"] = result.motion.final_q;
+  out["start"] = result.start;
+  const perception::Loop* loop = result.chosen_loop();
+  out["loop"] = loop ? array_of(loop->points) : Matrix(0, 3);
+  std::vector<Eigen::Vector3d> targets;
+  for (const auto& t : result.targets) targets.push_back(t.point);
+  out["targets"] = array_of(targets);
+  out["target"] = result.motion.target;
+  out["virtual_linking"] = result.final_state.virtual_linking;
+  out["verification"] = cli::verification_json(result.verification).dump();
+  out["object"] = object_dict(result.object);
+  const tsrrt::ClaspTimings& t = result.timings;
+  out["timings"] =
+      py::dict(py::arg("perception") = t.perception, py::arg("scene") = t.scene,
+               py::arg("search") = t.search, py::arg("planning") = t.planning,
+               py::arg("closing") = t.closing, py::arg("verification") = t.verification,
+               py::arg("pruning") = t.pruning);
+  out["cycles"] = result.statistics.cycles;
+  out["nodes"] = result.statistics.nodes;
+  return out;
+}
+
 // A scenario file through the command line's pipeline: (exit code, `run --json`'s summary text).
 std::pair<int, std::string> run_file(const std::string& path, std::optional<std::uint64_t> seed,
                                      std::optional<int> max_cycles,
@@ -188,7 +326,14 @@ std::pair<int, std::string> run_file(const std::string& path, std::optional<std:
   o.time_limit = time_limit;
   o.pictures = pictures;
   o.quiet = true;
-  const cli::RunOutcome r = cli::run_scenario(s, o);
+  Interrupt interrupt;
+  o.stop = interrupt.poll();
+  cli::RunOutcome r;
+  {
+    py::gil_scoped_release release;
+    r = cli::run_scenario(s, o);
+  }
+  interrupt.rethrow();
   return {r.exit_code, r.summary.dump()};
 }
 
@@ -262,24 +407,14 @@ PYBIND11_MODULE(_claspplan, m) {
 
   m.def(
       "perceive",
-      [](const std::vector<std::tuple<py::array_t<float, py::array::c_style | py::array::forcecast>,
-                                      Eigen::Matrix3d, Eigen::Matrix4d>>& depth,
-         const std::vector<std::pair<Matrix, std::optional<Eigen::Vector3d>>>& clouds,
-         const std::string& robot, std::optional<Eigen::Matrix<double, 6, 1>> crop, int points,
-         double d, std::uint64_t seed, bool no_reading_is_free) {
-        PerceiveArgs a;
-        for (const auto& [image, K, pose] : depth)
-          a.views.push_back(depth_view(image, K, pose, no_reading_is_free));
-        a.clouds = clouds;
+      [](const DepthInputs& depth, const CloudInputs& clouds, const std::string& robot,
+         const Crop& crop, int points, double d, std::uint64_t seed, bool no_reading_is_free) {
+        PerceiveArgs a = object_args(depth, clouds, crop, points, d, seed, no_reading_is_free);
         a.robot = robot;
-        a.crop = crop;
-        a.points = points;
-        a.d = d;
-        a.seed = seed;
         perception::ObjectModel model;
         {
           py::gil_scoped_release release;
-          model = perceive(a);
+          model = perception::build_object_model(inputs_of(a), options_of(a));
         }
         return object_dict(model);
       },
@@ -308,11 +443,52 @@ PYBIND11_MODULE(_claspplan, m) {
       },
       py::arg("path"));
   m.def(
+      "plan",
+      [](const Robot& robot, const Eigen::VectorXd& start, const DepthInputs& depth,
+         const CloudInputs& clouds,
+         const std::vector<std::pair<Eigen::Vector3d, Eigen::Vector3d>>& boxes, const Crop& crop,
+         int points, double d, int targets, std::optional<Eigen::Vector3d> near,
+         std::optional<double> goal_linking, std::optional<int> pre_expansions,
+         std::optional<double> random_probability, std::uint64_t seed,
+         std::optional<int> max_cycles, std::optional<double> time_limit, bool no_reading_is_free) {
+        PlanArgs a;
+        a.object = object_args(depth, clouds, crop, points, d, seed, no_reading_is_free);
+        a.start = start;
+        a.boxes = boxes;
+        a.targets = targets;
+        a.near = near;
+        a.goal_linking = goal_linking;
+        a.pre_expansions = pre_expansions;
+        a.random_probability = random_probability;
+        a.max_cycles = max_cycles;
+        a.time_limit = time_limit;
+        return plan(robot, a);
+      },
+      py::arg("robot"), py::arg("start"), py::arg("depth"), py::arg("clouds"), py::arg("boxes"),
+      py::arg("crop"), py::arg("points"), py::arg("d"), py::arg("targets"), py::arg("near"),
+      py::arg("goal_linking"), py::arg("pre_expansions"), py::arg("random_probability"),
+      py::arg("seed"), py::arg("max_cycles"), py::arg("time_limit"), py::arg("no_reading_is_free"));
+  m.def(
+      "verify_file",
+      [](const std::string& path, std::optional<std::uint64_t> seed) {
+        const cli::ResultFile r = cli::read_result_file(path);
+        tsrrt::SecureClaspOptions check;
+        if (seed) {
+          check.seed = *seed;
+        } else if (r.seed) {
+          check.seed = *r.seed;
+        }
+        py::gil_scoped_release release;
+        const tsrrt::SecureClaspReport v = tsrrt::check_secure_clasp(
+            r.model, r.object_vertices, r.object_triangles, r.final_q, r.loop, check);
+        return cli::verification_json(v).dump();
+      },
+      py::arg("path"), py::arg("seed"));
+  m.def(
       "run_file",
       [](const std::string& path, std::optional<std::uint64_t> seed, std::optional<int> max_cycles,
          std::optional<double> time_limit, const std::string& robot, const std::string& out,
          bool pictures) {
-        py::gil_scoped_release release;
         return run_file(path, seed, max_cycles, time_limit, robot, out, pictures);
       },
       py::arg("path"), py::arg("seed"), py::arg("max_cycles"), py::arg("time_limit"),

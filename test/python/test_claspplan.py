@@ -4,6 +4,7 @@ by long calls. Run by ctest with PYTHONPATH=build/python, CLASPPLAN_BIN and CLAS
 
 import json
 import os
+import signal
 import subprocess
 import sys
 import threading
@@ -128,6 +129,52 @@ def test_run_equals_the_command_line_for_the_same_seed(tmp_path):
         assert mine["result"][key] == result[key], key
     assert mine["path"].shape == (len(result["waypoints"]), claspplan.Robot("kr5_sdh").dof)
     np.testing.assert_array_equal(mine["final_q"], result["final_q"])
+    # verify() on the saved result: the command line's verdict and stages.
+    again = claspplan.verify(str(tmp_path / "py" / "result.json"))
+    checked = json.loads(cli("verify", str(tmp_path / "py" / "result.json"), "--json").stdout)
+    assert again["secure"] and again["stages"] == checked["stages"]
+
+
+def test_plan_from_arrays_equals_the_scenario_run():
+    # bag_2_sdh.yaml's inputs and options, given as arrays: the same plan, waypoint for waypoint.
+    view = os.path.join(EXAMPLES, "depth", "bag_2")
+    depth = [claspplan.read_depth(os.path.join(view, f"view_{i}.png"),
+                                  os.path.join(view, f"view_{i}.yaml")) for i in range(3)]
+    mine = claspplan.plan(
+        "kr5_sdh", [0, -1.9, 1.5707963, 0, 1.9, 0], depth=[d[:3] for d in depth],
+        no_reading_is_free=depth[0][3],
+        environment=[((2.5, 2.5, 0.05), (0.5, 0, -0.025)), ((0.6, 0.6, 0.2), (0.55, 0, 0.1))],
+        crop=((0.46, -0.21, 0.204), (0.64, 0.21, 0.675)), targets=23, near=(0.55, 0, 0.56),
+        goal_linking=0.85, pre_expansions=20, random_probability=0.1, seed=1, max_cycles=200)
+    theirs = claspplan.run(os.path.join(EXAMPLES, "scenarios", "bag_2_sdh.yaml"), seed=1,
+                           max_cycles=200)
+    assert mine["status"] == "success" and mine["verified"] and theirs["verified"]
+    np.testing.assert_array_equal(mine["path"], theirs["path"])
+    np.testing.assert_array_equal(mine["loop"], theirs["loop"])
+    assert mine["verification"]["secure"]
+    assert mine["verification"] == theirs["result"]["verification"]
+    assert set(mine["timings"]) >= {"perception", "search", "verification"}
+    # A valid problem without an answer is a status, not an exception.
+    empty = claspplan.plan("kr5_sdh", [0, -1.9, 1.5707963, 0, 1.9, 0],
+                           points=ring(centre=(0.55, 0, 0.3)) + 0.0, sensor_origin=(0, 0, 1),
+                           max_cycles=10)
+    assert empty["status"] == "no_claspable_loop" and not empty["verified"]
+
+
+def test_ctrl_c_ends_a_search(tmp_path):
+    # A search that would run for its 600 s limit (the pitcher's handle: the iCub finds no clasp
+    # on this seed), interrupted as Ctrl-C does: SIGINT while it runs. The search ends there, the
+    # result says so, and the call raises KeyboardInterrupt.
+    scenario = os.path.join(EXAMPLES, "scenarios", "real", "pitcher_icub.yaml")
+    timer = threading.Timer(1.0, lambda: os.kill(os.getpid(), signal.SIGINT))
+    timer.start()
+    try:
+        with pytest.raises(KeyboardInterrupt):
+            claspplan.run(scenario, seed=3, time_limit=600, out_dir=str(tmp_path))
+    finally:
+        timer.cancel()
+    with open(tmp_path / "result.json", encoding="utf-8") as f:
+        assert json.load(f)["reason"].startswith("search stopped by the caller")
 
 
 def test_long_calls_release_the_gil():

@@ -109,6 +109,21 @@ TEST_F(PurseFromDepth, SameRequestSameResult) {
   EXPECT_EQ(again.final_state.virtual_linking, result_->final_state.virtual_linking);
 }
 
+// A caller's stop (a GUI's cancel, Ctrl-C in Python) ends the search where it is polled, with a
+// reason that says so; a stop that never fires changes nothing.
+TEST_F(PurseFromDepth, AStopEndsTheSearch) {
+  tsrrt::ClaspRequest request = request_for(purse());
+  int polls = 0;
+  request.stop = [&polls] { return ++polls > 3; };
+  const tsrrt::ClaspResult stopped = plan_clasp(request);
+  EXPECT_FALSE(stopped.succeeded());
+  EXPECT_EQ(stopped.reason.rfind("search stopped by the caller", 0), 0u) << stopped.reason;
+  EXPECT_EQ(polls, 4);
+  request.stop = [] { return false; };
+  const tsrrt::ClaspResult unstopped = plan_clasp(request);
+  EXPECT_EQ(unstopped.motion.waypoints, result_->motion.waypoints);
+}
+
 // Issue 33: the planned path and the closed hand stay in space the cameras saw free (checked by
 // points inside the robot's shapes against the sensed map, without the collision world).
 TEST_F(PurseFromDepth, NoPartOfTheRobotEntersUnseenSpace) {

@@ -26,9 +26,11 @@ __all__ = [
     "gauss_linking",
     "virtual_linking",
     "perceive",
+    "plan",
     "read_depth",
     "read_cloud",
     "run",
+    "verify",
 ]
 
 ArrayLike = Union[np.ndarray, Sequence[Sequence[float]]]
@@ -94,6 +96,14 @@ def perceive(
     claspable, verdict, reason, length, hole_width, centre, normal), targets (k x 3) and
     target_tangents (k x 3) on the best claspable loop.
     """
+    views, clouds, box = _object_arrays(depth, points, sensor_origin, crop)
+    name = robot.source if isinstance(robot, Robot) else (robot or "")
+    return _claspplan.perceive(views, clouds, name, box, int(n_points), float(d), int(seed),
+                               bool(no_reading_is_free))
+
+
+def _object_arrays(depth, points, sensor_origin, crop):
+    """perceive()'s and plan()'s object arguments as the C++ module takes them."""
     clouds = []
     if points is not None:
         arrays = _cloud_list(points)
@@ -114,9 +124,56 @@ def perceive(
     if crop is not None:
         box = np.concatenate([np.asarray(crop[0], dtype=np.float64).reshape(3),
                               np.asarray(crop[1], dtype=np.float64).reshape(3)])
-    name = robot.source if isinstance(robot, Robot) else (robot or "")
-    return _claspplan.perceive(views, clouds, name, box, int(n_points), float(d), int(seed),
-                               bool(no_reading_is_free))
+    return views, clouds, box
+
+
+def plan(
+    robot: Union[str, Robot],
+    start: ArrayLike,
+    depth: Sequence[DepthInput] = (),
+    points: Optional[Union[ArrayLike, Sequence[ArrayLike]]] = None,
+    sensor_origin: Optional[Union[ArrayLike, Sequence[Optional[ArrayLike]]]] = None,
+    environment: Sequence[Tuple[ArrayLike, ArrayLike]] = (),
+    crop: Optional[Tuple[ArrayLike, ArrayLike]] = None,
+    n_points: int = 2000,
+    d: float = 0.0,
+    targets: int = 12,
+    near: Optional[ArrayLike] = None,
+    goal_linking: Optional[float] = None,
+    pre_expansions: Optional[int] = None,
+    random_probability: Optional[float] = None,
+    seed: int = 1,
+    max_cycles: Optional[int] = None,
+    time_limit: Optional[float] = None,
+    no_reading_is_free: bool = False,
+) -> Dict[str, Any]:
+    """Plans a clasp (paper Alg. 1: TS-RRT, the fingers closed and the clasp verified at each goal)
+    from arrays: perception as in perceive(), then the search from `start` (the arm's joints, or
+    all joints).
+
+    environment: (size, centre) boxes the robot must avoid (the floor, a table), metres.
+    targets: clasp targets on the loop; near: clasp the claspable loop nearest this point;
+    goal_linking: the virtual-linking goal (default: the robot's); pre_expansions,
+    random_probability: the planner's n and P (paper Sec. V); seed, max_cycles, time_limit as for
+    `claspplan run`.
+
+    Returns a dict: status ("success", "no_claspable_loop", "no_clasp"), verified, reason, path
+    (M x dof), final_q, start, loop (k x 3), targets (t x 3), target, virtual_linking,
+    verification (the secure-clasp check's stages, as result.json has them), object (as
+    perceive() returns it), timings (seconds per phase), cycles and nodes.
+    """
+    model = robot if isinstance(robot, Robot) else Robot(robot)
+    views, clouds, box = _object_arrays(depth, points, sensor_origin, crop)
+    boxes = [(np.asarray(size, dtype=np.float64).reshape(3),
+              np.asarray(centre, dtype=np.float64).reshape(3)) for size, centre in environment]
+    result = _claspplan.plan(
+        model, np.asarray(start, dtype=np.float64).reshape(-1), views, clouds, boxes, box,
+        int(n_points), float(d), int(targets),
+        None if near is None else np.asarray(near, dtype=np.float64).reshape(3), goal_linking,
+        pre_expansions, random_probability, int(seed), max_cycles, time_limit,
+        bool(no_reading_is_free))
+    result["verification"] = json.loads(result["verification"])
+    return result
 
 
 def read_depth(png: str, camera: str) -> Tuple[np.ndarray, np.ndarray, np.ndarray, bool]:
@@ -167,3 +224,10 @@ def run(
                                  dtype=np.float64).reshape(-1, 3)
     summary["out_dir"] = out_dir
     return summary
+
+
+def verify(result: str, seed: Optional[int] = None) -> Dict[str, Any]:
+    """The secure-clasp check of a saved result.json again (`claspplan verify --json`): the
+    paper's random motions and the escape searches; `secure` is True when no stage freed the
+    object. The seed defaults to the result's."""
+    return json.loads(_claspplan.verify_file(os.fspath(result), seed))

@@ -56,6 +56,26 @@ def perceive(
     seed: int,
     no_reading_is_free: bool,
 ) -> Dict[str, object]: ...
+def plan(
+    robot: Robot,
+    start: np.ndarray,
+    depth: Sequence[Tuple[np.ndarray, np.ndarray, np.ndarray]],
+    clouds: Sequence[Tuple[np.ndarray, Optional[np.ndarray]]],
+    boxes: Sequence[Tuple[np.ndarray, np.ndarray]],
+    crop: Optional[np.ndarray],
+    points: int,
+    d: float,
+    targets: int,
+    near: Optional[np.ndarray],
+    goal_linking: Optional[float],
+    pre_expansions: Optional[int],
+    random_probability: Optional[float],
+    seed: int,
+    max_cycles: Optional[int],
+    time_limit: Optional[float],
+    no_reading_is_free: bool,
+) -> Dict[str, object]: ...
+def verify_file(path: str, seed: Optional[int]) -> str: ...
 def read_depth(png: str, camera: str) -> Tuple[np.ndarray, np.ndarray, np.ndarray, bool]: ...
 def read_cloud(path: str) -> Tuple[np.ndarray, int, int, Optional[np.ndarray]]: ...
 def run_file(
