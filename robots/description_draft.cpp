@@ -212,20 +212,6 @@ CurvePoint tip_point(const Tree& t, const std::vector<int>& chain) {
   return p;
 }
 
-// The mean of the curves' 1 - cord / closed length (eq. 2's factor; eq. 4 averages) at q.
-double mean_cord_ratio(const RobotModel& m, const Eigen::VectorXd& q) {
-  RobotData data(m);
-  FingerCurvesData curves;
-  finger_curves(m, q, data, curves, false);
-  double sum = 0.0;
-  for (const auto& c : curves.points) {
-    double length = (c.back() - c.front()).norm();
-    for (std::size_t i = 1; i < c.size(); ++i) length += (c[i] - c[i - 1]).norm();
-    sum += length > 0 ? 1.0 - (c.back() - c.front()).norm() / length : 0.0;
-  }
-  return curves.points.empty() ? 0.0 : sum / static_cast<double>(curves.points.size());
-}
-
 // A closed hand should enclose a 3 cm bar (a typical handle) with 1 cm to spare.
 constexpr double kWantedAperture = 0.04;
 
@@ -238,9 +224,7 @@ void choose_goal(Draft& d, const DraftOptions& o, std::vector<std::string>& gues
   for (double goal : {0.9, 0.85, 0.8, 0.75, 0.7, 0.65, 0.6, 0.55, 0.5}) {
     m.vlink_goal = goal;
     const HandSize size = hand_size(m);
-    Eigen::VectorXd q = m.home;
-    q.tail(m.hand_dof) = size.closed_q;
-    if (mean_cord_ratio(m, q) < goal - 1e-3) continue;  // the fingers' limits stop short of it
+    if (size.closed_ratio < goal - 1e-3) continue;  // the fingers' limits stop short of it
     if (size.closed_aperture > best + 1e-9) {
       best = size.closed_aperture;
       best_goal = goal;
@@ -248,18 +232,18 @@ void choose_goal(Draft& d, const DraftOptions& o, std::vector<std::string>& gues
     }
     if (size.closed_aperture >= kWantedAperture) break;
   }
-  char note[200];
   if (best < 0) {
     d.vlink_goal = 0.5;
     d.vlink_note = "guessed: the closing fingers never reach 0.5: check the closing directions";
     guesses.push_back("vlink_goal: no goal from 0.9 down to 0.5 is reached when the fingers close");
   } else {
     d.vlink_goal = best_goal;
-    std::snprintf(note, sizeof note,
-                  "guessed: the highest goal that leaves the closed hand %.1f cm inside (%s 4 cm)",
+    char what[160];
+    std::snprintf(what, sizeof what,
+                  "the highest goal that leaves the closed hand %.1f cm inside (%s 4 cm)",
                   100.0 * best, best >= kWantedAperture ? ">=" : "the most, short of");
-    d.vlink_note = note;
-    guesses.push_back("vlink_goal " + draft_number(best_goal) + ": " + std::string(note).substr(9));
+    d.vlink_note = std::string("guessed: ") + what;
+    guesses.push_back("vlink_goal " + draft_number(best_goal) + ": " + what);
   }
   RobotData data(m);
   forward_kinematics(m, m.home, data);

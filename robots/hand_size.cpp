@@ -108,9 +108,9 @@ HandSize hand_size(const RobotModel& model) {
     finger_curves(model, q, data, curves, false);
     double mean = 0.0;
     for (const auto& c : curves.points) mean += cord_ratio(c);
-    if (curves.points.empty() ||
-        mean / static_cast<double>(curves.points.size()) >= model.vlink_goal)
-      break;
+    size.closed_ratio =
+        curves.points.empty() ? 0.0 : mean / static_cast<double>(curves.points.size());
+    if (curves.points.empty() || size.closed_ratio >= model.vlink_goal) break;
     Eigen::VectorXd next = q;
     for (int j = model.arm_dof; j < model.dof(); ++j) next[j] += model.joints[j].closing * kStep;
     next = next.cwiseMax(lower).cwiseMin(upper);

@@ -19,6 +19,9 @@ struct HandSize {
   double closed_aperture = 0.0;
   /// The hand joints at that closure (the open pre-shape moved along the closing directions).
   Eigen::VectorXd closed_q;
+  /// The curves' mean cord ratio there: below vlink_goal when the joints' limits stopped the
+  /// closing first (the goal cannot be reached).
+  double closed_ratio = 0.0;
   /// Where a bar sits in the closed hand: the mean of those circles' centres, in the world frame
   /// with the arm at its home pose (m).
   Eigen::Vector3d closed_centre = Eigen::Vector3d::Zero();
