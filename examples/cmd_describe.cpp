@@ -1,6 +1,7 @@
 // `claspplan describe URDF [--hand-urdf FILE --mount LINK] [--out FILE]`: a first hand
 // description for a robot from its URDF(s) (robots/description_draft.hpp), written to --out, with
 // what was guessed and what the drafted hand can clasp.
+#include <cmath>
 #include <cstdio>
 #include <fstream>
 
@@ -15,14 +16,23 @@ namespace {
 
 struct DescribeOptions {
   robots::DraftOptions draft;
-  std::vector<double> mount_xyz;
+  std::vector<double> mount_xyz, mount_rpy;
   bool json = false;
 };
 
 int run_describe(DescribeOptions o) {
+  for (double v : o.mount_xyz)
+    if (!std::isfinite(v)) throw InputError("--mount-xyz: values must be finite");
+  for (double v : o.mount_rpy)
+    if (!std::isfinite(v)) throw InputError("--mount-rpy: values must be finite");
   if (!o.mount_xyz.empty()) {
     if (o.mount_xyz.size() != 3) throw InputError("--mount-xyz: expected x,y,z in metres");
     o.draft.mount_xyz = {o.mount_xyz[0], o.mount_xyz[1], o.mount_xyz[2]};
+  }
+  if (!o.mount_rpy.empty()) {
+    if (o.mount_rpy.size() != 3)
+      throw InputError("--mount-rpy: expected roll,pitch,yaw in radians");
+    o.draft.mount_rpy = {o.mount_rpy[0], o.mount_rpy[1], o.mount_rpy[2]};
   }
   progress("drafting the description of " + o.draft.urdf.string() + " (sampling " +
            std::to_string(o.draft.samples) + " configurations for the allowed pairs) ...");
@@ -83,6 +93,13 @@ void add_describe_command(CLI::App& app, Action& action) {
                   "x,y,z (m): the hand's root in the mount link's frame (default 0,0,0)")
       ->delimiter(',')
       ->expected(3);
+  cmd->add_option("--mount-rpy", o->mount_rpy,
+                  "r,p,y (rad): the hand's root's turn in the mount link's frame (default 0,0,0)")
+      ->delimiter(',')
+      ->expected(3);
+  cmd->add_option("--hand-urdf-root", o->draft.hand_urdf_root,
+                  "take the hand from --hand-urdf's subtree below this link (a hand cut from a "
+                  "whole robot's URDF; default: its root)");
   cmd->add_option("--home", o->draft.home,
                   "Q1,Q2,...: the arm's home (the vendor's, radians); link pairs in contact there "
                   "are allowed (default: all 0, nothing allowed for it)")

@@ -29,18 +29,29 @@ struct Tree {
   RobotModel m;                             // links and shapes only
   UrdfJoints joints;
   std::vector<std::vector<int>> children;
-  std::vector<int> below;  // per link: actuated joints in its subtree, its own included
+  std::vector<int> below;  // per link: moving joints in its subtree, its own included
 
   const urdf::Joint* joint(int link) const {
     const auto it = joints.joint_of_link.find(m.links[link].name);
     return it == joints.joint_of_link.end() ? nullptr : it->second;
   }
-  // A joint the user drives: revolute, continuous or prismatic, and not a mimic of another.
-  bool actuated(int link) const {
+  // A joint that moves: revolute, continuous or prismatic (a mimic of another too).
+  bool moves(int link) const {
     const urdf::Joint* j = joint(link);
-    return j && !j->mimic &&
-           (j->type == urdf::Joint::REVOLUTE || j->type == urdf::Joint::CONTINUOUS ||
-            j->type == urdf::Joint::PRISMATIC);
+    return j && (j->type == urdf::Joint::REVOLUTE || j->type == urdf::Joint::CONTINUOUS ||
+                 j->type == urdf::Joint::PRISMATIC);
+  }
+  // A joint the user drives: one that moves and is not a mimic of another.
+  bool actuated(int link) const { return moves(link) && !joint(link)->mimic; }
+  // The joint the user drives to move `link`: its own, or the leader its mimic chain ends at
+  // ("" for a fixed joint; a chain that does not end in a driven joint is the loader's error).
+  std::string driver(int link) const {
+    const urdf::Joint* j = moves(link) ? joint(link) : nullptr;
+    for (std::size_t hops = 0; j && j->mimic && hops <= m.links.size(); ++hops) {
+      const auto it = joints.link_by_joint.find(j->mimic->joint_name);
+      j = it == joints.link_by_joint.end() ? nullptr : joint(it->second);
+    }
+    return j && !j->mimic ? j->name : std::string();
   }
   int link(const std::string& name, const std::string& flag) const {
     const int i = m.find_link(name);
@@ -60,14 +71,15 @@ Tree read_tree(const DraftOptions& o) {
     t.hand = parse_urdf(read_text_file(o.hand_urdf, "hand URDF file"), o.hand_urdf.string());
     Eigen::Isometry3d origin = Eigen::Isometry3d::Identity();
     origin.translation() = o.mount_xyz;
+    origin.linear() = rpy_rotation(o.mount_rpy);
     attach_urdf_tree(*t.hand, o.hand_urdf.string(), t.link(o.mount, "--mount"), origin, t.m,
-                     t.joints);
+                     t.joints, o.hand_urdf_root);
   }
   const int n = static_cast<int>(t.m.links.size());
   t.children.assign(n, {});
   t.below.assign(n, 0);
   for (int i = n - 1; i >= 0; --i) {  // parents come first: children are done before them
-    t.below[i] += t.actuated(i) ? 1 : 0;
+    t.below[i] += t.moves(i) ? 1 : 0;
     if (t.m.links[i].parent >= 0) {
       t.children[t.m.links[i].parent].insert(t.children[t.m.links[i].parent].begin(), i);
       t.below[t.m.links[i].parent] += t.below[i];
@@ -76,7 +88,7 @@ Tree read_tree(const DraftOptions& o) {
   return t;
 }
 
-// The children of `link` whose subtrees hold actuated joints.
+// The children of `link` whose subtrees hold moving joints.
 std::vector<int> moving_branches(const Tree& t, int link) {
   std::vector<int> out;
   for (int c : t.children[link])
@@ -87,7 +99,9 @@ std::vector<int> moving_branches(const Tree& t, int link) {
 int find_hand_root(const Tree& t, const DraftOptions& o) {
   if (!o.hand_root.empty()) return t.link(o.hand_root, "--hand-root");
   // A mounted hand's fingers are below its own root, whatever else the arm carries.
-  for (int link = t.hand ? t.m.link_index(t.hand->getRoot()->name) : 0;;) {
+  const std::string mounted =
+      o.hand_urdf_root.empty() && t.hand ? t.hand->getRoot()->name : o.hand_urdf_root;
+  for (int link = t.hand ? t.m.link_index(mounted) : 0;;) {
     const std::vector<int> branches = moving_branches(t, link);
     if (branches.size() >= 2) return link;
     if (branches.empty())
@@ -99,7 +113,7 @@ int find_hand_root(const Tree& t, const DraftOptions& o) {
 }
 
 // A finger: from a branch of the hand's root down to a leaf, following the branch with the most
-// actuated joints (then the first), so that a fixed fingertip link ends it.
+// moving joints (then the first), so that a fixed fingertip link ends it.
 std::vector<int> finger_chain(const Tree& t, int first) {
   std::vector<int> chain{first};
   while (!t.children[chain.back()].empty()) {
@@ -152,6 +166,8 @@ Draft topology(const Tree& t, const DraftOptions& o, int root) {
     d.hand_urdf = relative_to_out(o.hand_urdf, o);
     d.mount = o.mount;
     d.mount_xyz = o.mount_xyz;
+    d.mount_rpy = o.mount_rpy;
+    d.hand_urdf_root = o.hand_urdf_root;
     d.replaces = o.replaces;
   }
   d.mesh_hulls = o.mesh_hulls;
@@ -182,34 +198,16 @@ Draft topology(const Tree& t, const DraftOptions& o, int root) {
   for (int branch : moving_branches(t, root)) {
     FingerDraft f;
     f.chain = finger_chain(t, branch);
-    for (int l : f.chain) {
+    for (int l : f.chain) {  // a coupled finger's joints are the ones its mimics follow
       f.links.push_back(t.m.links[l].name);
-      if (t.actuated(l)) f.joints.push_back(t.joint(l)->name);
+      const std::string j = t.driver(l);
+      if (!j.empty() && std::find(f.joints.begin(), f.joints.end(), j) == f.joints.end())
+        f.joints.push_back(j);
     }
     f.name = "finger_" + std::to_string(d.fingers.size() + 1);
     d.fingers.push_back(f);
   }
   return d;
-}
-
-// The fingertip: the far end of the last link's shapes along the finger (from the previous link's
-// origin through the last one's), else the last link's origin.
-CurvePoint tip_point(const Tree& t, const std::vector<int>& chain) {
-  const int leaf = chain.back();
-  const Link& link = t.m.links[leaf];
-  Eigen::Vector3d u = link.origin.linear().transpose() * link.origin.translation();
-  u = u.norm() > 1e-6 ? u.normalized() : Eigen::Vector3d::UnitZ();
-  double reach = 0.0;
-  for (int s : link.shapes) {
-    const CollisionShape& shape = t.m.shapes[s];
-    const Eigen::AlignedBox3d box = shape_bounds(shape);
-    for (int c = 0; c < 8; ++c) {
-      const Eigen::Vector3d corner = box.corner(static_cast<Eigen::AlignedBox3d::CornerType>(c));
-      reach = std::max(reach, (shape.origin * corner).dot(u));
-    }
-  }
-  CurvePoint p{link.name, reach * u, reach > 1e-4};
-  return p;
 }
 
 // A closed hand should enclose a 3 cm bar (a typical handle) with 1 cm to spare.
@@ -218,12 +216,14 @@ constexpr double kWantedAperture = 0.04;
 // The highest goal the closing hand reaches with kWantedAperture left inside it (else the one
 // that leaves the most), and the tcp in the middle of the hand closed to it.
 void choose_goal(Draft& d, const DraftOptions& o, std::vector<std::string>& guesses) {
-  RobotModel m = load_draft(d, o);
+  const RobotModel m = load_draft(d, o);
+  const std::vector<double> goals = {0.5, 0.55, 0.6, 0.65, 0.7, 0.75, 0.8, 0.85, 0.9};
+  const std::vector<HandSize> sizes = hand_sizes(m, goals);  // one closing sweep
   double best = -1.0, best_goal = 0.0;
   Eigen::Vector3d centre = Eigen::Vector3d::Zero();  // of the hand closed to the goal chosen
-  for (double goal : {0.9, 0.85, 0.8, 0.75, 0.7, 0.65, 0.6, 0.55, 0.5}) {
-    m.vlink_goal = goal;
-    const HandSize size = hand_size(m);
+  for (std::size_t i = goals.size(); i-- > 0;) {     // the highest first
+    const double goal = goals[i];
+    const HandSize& size = sizes[i];
     if (size.closed_ratio < goal - 1e-3) continue;  // the fingers' limits stop short of it
     if (size.closed_aperture > best + 1e-9) {
       best = size.closed_aperture;
@@ -292,18 +292,8 @@ void allow_pairs(Draft& d, const DraftOptions& o, DescriptionDraft& out) {
   if (!at_guessed_home.empty())
     out.guesses.push_back("home: links in contact at the guessed home (" + at_guessed_home +
                           "): give the vendor's home with --home, or write a free one");
-  // The pairs checked: links with shapes, not joined through links without (CollisionWorld).
-  const auto shaped_parent = [&](int l) {
-    int p = m.links[l].parent;
-    while (p >= 0 && m.links[p].shapes.empty()) p = m.links[p].parent;
-    return p;
-  };
-  int pairs = 0;
-  for (int a = 0; a < static_cast<int>(m.links.size()); ++a)
-    for (int b = a + 1; b < static_cast<int>(m.links.size()); ++b)
-      pairs += !m.links[a].shapes.empty() && !m.links[b].shapes.empty() && shaped_parent(b) != a &&
-               shaped_parent(a) != b;
-  out.never_colliding_pairs = std::max(0, pairs - touched);
+  out.never_colliding_pairs =
+      std::max(0, static_cast<int>(world.self_collision_pairs().size()) - touched);
 }
 
 }  // namespace
@@ -320,7 +310,7 @@ DescriptionDraft draft_description(const DraftOptions& o) {
   if (o.hand_root.empty())
     out.guesses.push_back("hand root: " + d.base_link +
                           ", the first link with two or more moving branches (--hand-root)");
-  for (FingerDraft& f : d.fingers) f.tip = tip_point(t, f.chain);
+  for (FingerDraft& f : d.fingers) f.tip = {f.links.back()};  // shape_hand finds the tips
   // A first model, to see the hand: every finger against the next through the palm (the last
   // one a thumb for now).
   d.fingers.back().thumb = true;

@@ -21,6 +21,9 @@ struct DraftOptions {
   std::filesystem::path hand_urdf;  ///< optional: a hand's own URDF, mounted on `mount`
   std::string mount;                ///< the arm link the hand's URDF is mounted on
   Eigen::Vector3d mount_xyz = Eigen::Vector3d::Zero();  ///< the hand's root in the mount's frame
+  Eigen::Vector3d mount_rpy = Eigen::Vector3d::Zero();  ///< and its turn (URDF roll, pitch, yaw)
+  /// The hand's root link in `hand_urdf` (default: its root): a hand cut from a humanoid's URDF.
+  std::string hand_urdf_root;
   std::vector<std::string> replaces;  ///< the arm's own gripper links, left out for the hand
   bool mesh_hulls = false;            ///< collide meshes as their convex hulls
   /// The arm's home (the vendor's): written as arm.home, and link pairs in contact there are

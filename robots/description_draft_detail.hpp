@@ -34,10 +34,10 @@ struct FingerDraft {
 
 // Everything the description says, as drafted so far.
 struct Draft {
-  std::string name, urdf, hand_urdf, mount, tool_link, base_link;
+  std::string name, urdf, hand_urdf, hand_urdf_root, mount, tool_link, base_link;
   std::vector<std::string> replaces;
   bool mesh_hulls = false, home_given = false;
-  Eigen::Vector3d mount_xyz = Eigen::Vector3d::Zero();
+  Eigen::Vector3d mount_xyz = Eigen::Vector3d::Zero(), mount_rpy = Eigen::Vector3d::Zero();
   std::vector<JointDraft> arm, hand;
   std::vector<FingerDraft> fingers;
   std::vector<std::pair<std::string, std::vector<CurvePoint>>> curves;

@@ -38,8 +38,10 @@ std::string to_yaml(const Draft& d) {
        "# (README, \"Your own robot\").\n";
   y << "name: " << d.name << "\nurdf: " << d.urdf << "\n";
   if (!d.hand_urdf.empty()) {
-    y << "hand_urdf: {file: " << d.hand_urdf << ", parent: " << d.mount
-      << ", xyz: " << vec(d.mount_xyz);
+    y << "hand_urdf: {file: " << d.hand_urdf;
+    if (!d.hand_urdf_root.empty()) y << ", root: " << d.hand_urdf_root;
+    y << ", parent: " << d.mount << ", xyz: " << vec(d.mount_xyz);
+    if (!d.mount_rpy.isZero()) y << ", rpy: " << vec(d.mount_rpy, "%.9g");
     if (!d.replaces.empty()) {
       y << ", replaces: [";
       for (std::size_t i = 0; i < d.replaces.size(); ++i) y << (i ? ", " : "") << d.replaces[i];

@@ -375,8 +375,9 @@ void read_allowed_pairs(ModelBuild& b, const YamlField& root) {
                         m.allowed_pairs.end());
 }
 
-// hand_urdf: the hand's own URDF, mounted on an arm link at xyz / rpy (URDF conventions); the
-// arm's own gripper, `replaces` (a link and its subtree), is left out of the arm's URDF.
+// hand_urdf: the hand's own URDF (or, from `root` down, a whole robot's), mounted on an arm link
+// at xyz / rpy (URDF conventions); the arm's own gripper, `replaces` (a link and its subtree), is
+// left out of the arm's URDF.
 void mount_hand(ModelBuild& b, const YamlField& n, const urdf::ModelInterface& hand,
                 const std::string& hand_file) {
   const int parent = b.link_of(n.required("parent"));
@@ -384,11 +385,9 @@ void mount_hand(ModelBuild& b, const YamlField& n, const urdf::ModelInterface& h
   const Eigen::Vector3d rpy = n.has("rpy") ? n["rpy"].vector3() : Eigen::Vector3d::Zero();
   Eigen::Isometry3d origin = Eigen::Isometry3d::Identity();
   origin.translation() = xyz;
-  origin.linear() = (Eigen::AngleAxisd(rpy.z(), Eigen::Vector3d::UnitZ()) *
-                     Eigen::AngleAxisd(rpy.y(), Eigen::Vector3d::UnitY()) *
-                     Eigen::AngleAxisd(rpy.x(), Eigen::Vector3d::UnitX()))
-                        .toRotationMatrix();
-  attach_urdf_tree(hand, hand_file, parent, origin, b.m, b.urdf);
+  origin.linear() = rpy_rotation(rpy);
+  attach_urdf_tree(hand, hand_file, parent, origin, b.m, b.urdf,
+                   n.has("root") ? n["root"].text() : std::string());
 }
 
 RobotModel build_model(const YamlField& root, const urdf::ModelInterface& urdf,
@@ -438,7 +437,7 @@ RobotModel build_robot(const std::string& yaml_text, const std::string& yaml_fil
     std::string hand_file;
     if (root.has("hand_urdf")) {
       const YamlField n = root["hand_urdf"];
-      n.only({"file", "parent", "xyz", "rpy", "replaces"});
+      n.only({"file", "root", "parent", "xyz", "rpy", "replaces"});
       const auto text = read_urdf(n.required("file").text());
       hand_file = text.first;
       hand = parse_urdf(text.second, text.first);

@@ -99,6 +99,29 @@ Eigen::Vector3d toward_opposite(const Eigen::Vector3d& base, const Eigen::Vector
   return toward.norm() > 1e-9 ? toward.normalized() : Eigen::Vector3d::UnitX();
 }
 
+// The fingertip at the pose in `data`: the far end of the last link's shapes along the finger
+// (from the previous link's origin through the last one's), else the last link's origin. Taken
+// at the open hand: a phalanx's frame may turn away from the bone at other joint values.
+CurvePoint tip_point(const RobotModel& m, const RobotData& data, const FingerDraft& f) {
+  const int leaf = m.link_index(f.links.back());
+  const Eigen::Isometry3d& pose = data.link_poses[leaf];
+  const int parent = m.links[leaf].parent;
+  Eigen::Vector3d u = pose.translation() - data.link_poses[parent].translation();
+  if (u.norm() < 1e-6)
+    u = pose.translation() - data.link_poses[m.link_index(f.links[0])].translation();
+  u = u.norm() > 1e-6 ? u.normalized() : pose.linear().col(2);
+  double reach = 0.0;
+  for (int s : m.links[leaf].shapes) {
+    const CollisionShape& shape = m.shapes[s];
+    const Eigen::AlignedBox3d box = shape_bounds(shape);
+    for (int c = 0; c < 8; ++c) {
+      const Eigen::Vector3d corner = box.corner(static_cast<Eigen::AlignedBox3d::CornerType>(c));
+      reach = std::max(reach, (pose * (shape.origin * corner) - pose.translation()).dot(u));
+    }
+  }
+  return {f.links.back(), pose.linear().transpose() * (reach * u), reach > 1e-4};
+}
+
 // The open hand as the draft sees it: each finger's base and tip at the pre-shape q.
 struct OpenHand {
   const RobotModel& m;
@@ -107,9 +130,17 @@ struct OpenHand {
   std::vector<Eigen::Vector3d> base, tip;
   mutable RobotData probe;
 
-  OpenHand(const RobotModel& model, const Draft& d) : m(model), q(model.home), probe(model) {
-    for (const FingerDraft& f : d.fingers) {
-      forward_kinematics(m, q, probe);
+  OpenHand(const RobotModel& model, Draft& d) : m(model), q(model.home), probe(model) {
+    open_at(q, d);
+  }
+  // Sets the pre-shape and the fingers' tips there.
+  void open_at(const Eigen::VectorXd& at, Draft& d) {
+    q = at;
+    base.clear();
+    tip.clear();
+    forward_kinematics(m, q, probe);
+    for (FingerDraft& f : d.fingers) {
+      f.tip = tip_point(m, probe, f);
       base.push_back(probe.link_poses[m.link_index(f.links.front())].translation());
       tip.push_back(position(m, probe, f.tip));
     }
@@ -219,7 +250,9 @@ void trim_finger_links(const RobotModel& m, Draft& d) {
     std::size_t first = 0;
     for (; first + 1 < f.links.size(); ++first) {
       const Link& link = m.links[m.link_index(f.links[first])];
-      const auto closes = [&](const JointDraft& j) { return j.name == link.joint && j.closing; };
+      const auto closes = [&](const JointDraft& j) {  // link's joint, or the one it mimics
+        return link.q_index >= 0 && j.name == m.joints[link.q_index].name && j.closing;
+      };
       double thickness = 0.0;
       for (int s : link.shapes) thickness = std::max(thickness, cross_section(m.shapes[s]));
       if (std::any_of(d.hand.begin(), d.hand.end(), closes) && thickness <= kThickFinger) break;
@@ -279,9 +312,20 @@ void shape_hand(Draft& d, const RobotModel& m, std::vector<std::string>& guesses
   d.fingers[hand.thumb].thumb = true;
   d.fingers[hand.thumb].name = "thumb";
   Eigen::Vector3d motion = Eigen::Vector3d::Zero();  // the fingers' tips as they close
-  for (int f = 0; f < static_cast<int>(d.fingers.size()); ++f)
-    if (f != hand.thumb) motion += set_closing(hand, d, f, -1);
-  set_closing(hand, d, hand.thumb, turn_thumb(hand, d, motion, guesses));
+  int held = -1;
+  // A second pass when a joint opens at its other limit (a hand closed at 0, as NAO's and
+  // Romeo's are): the directions and tips are read again at the open hand.
+  for (int pass = 0; pass < 2; ++pass) {
+    motion.setZero();
+    for (int f = 0; f < static_cast<int>(d.fingers.size()); ++f)
+      if (f != hand.thumb) motion += set_closing(hand, d, f, -1);
+    if (pass == 0) held = turn_thumb(hand, d, motion, guesses);
+    set_closing(hand, d, hand.thumb, held);
+    Eigen::VectorXd open = hand.q;
+    for (const JointDraft& j : d.hand) open[m.joint_index(j.name)] = j.open;
+    if (pass == 1 || open.isApprox(hand.q)) break;
+    hand.open_at(open, d);
+  }
   trim_finger_links(m, d);
   frame_and_curves(hand, d, motion);
 }

@@ -78,8 +78,10 @@ double cross_section(const CollisionShape& s) {
   return 0.0;
 }
 
-HandSize hand_size(const RobotModel& model) {
-  HandSize size;
+std::vector<HandSize> hand_sizes(const RobotModel& model, const std::vector<double>& goals) {
+  if (!std::is_sorted(goals.begin(), goals.end()))
+    throw std::invalid_argument("hand_sizes: the goals must be in ascending order");
+  HandSize open;
   // The links the finger's own joints move (not a knuckle base that stays outside the hole).
   for (const Finger& f : model.fingers) {
     for (int link : f.links) {
@@ -90,43 +92,58 @@ HandSize hand_size(const RobotModel& model) {
       if (!moved) continue;
       for (int s : model.links[link].shapes) {
         const double t = cross_section(model.shapes[s]);
-        if (t > size.finger_thickness) {
-          size.finger_thickness = t;
-          size.thickest_link = link;
+        if (t > open.finger_thickness) {
+          open.finger_thickness = t;
+          open.thickest_link = link;
         }
       }
     }
   }
+  std::vector<HandSize> sizes;
+  // The hand at q, its curves and their mean cord ratio as the sweep saw them last.
+  const auto closed = [&](const Eigen::VectorXd& q, const FingerCurvesData& curves, double ratio) {
+    HandSize size = open;
+    size.closed_q = q.tail(model.hand_dof);
+    size.closed_ratio = ratio;
+    double aperture = std::numeric_limits<double>::infinity();
+    for (const auto& c : curves.points) {
+      const auto [diameter, centre] = inscribed_circle(c);
+      aperture = std::min(aperture, diameter);
+      size.closed_centre += centre / static_cast<double>(curves.points.size());
+    }
+    size.closed_aperture =
+        std::isfinite(aperture) ? std::max(0.0, aperture - size.finger_thickness) : 0.0;
+    sizes.push_back(size);
+  };
 
-  // Close from the open pre-shape until the mean cord ratio reaches the goal (eq. 4 averages).
+  // Close from the open pre-shape; each goal's hand is the first whose mean cord ratio reaches it
+  // (eq. 4 averages), else the last one: the joints at their limits or 2000 steps done.
   constexpr double kStep = 0.005;  // rad per joint and step
   Eigen::VectorXd q = model.home;
   RobotData data(model);
   FingerCurvesData curves;
   const Eigen::VectorXd lower = model.lower(), upper = model.upper();
-  for (int k = 0; k < 2000; ++k) {
+  double ratio = 0.0;
+  for (int k = 0; k < 2000 && sizes.size() < goals.size(); ++k) {
     finger_curves(model, q, data, curves, false);
     double mean = 0.0;
     for (const auto& c : curves.points) mean += cord_ratio(c);
-    size.closed_ratio =
-        curves.points.empty() ? 0.0 : mean / static_cast<double>(curves.points.size());
-    if (curves.points.empty() || size.closed_ratio >= model.vlink_goal) break;
+    ratio = curves.points.empty() ? 0.0 : mean / static_cast<double>(curves.points.size());
+    if (curves.points.empty()) break;
+    while (sizes.size() < goals.size() && ratio >= goals[sizes.size()]) closed(q, curves, ratio);
+    if (sizes.size() == goals.size()) break;
     Eigen::VectorXd next = q;
     for (int j = model.arm_dof; j < model.dof(); ++j) next[j] += model.joints[j].closing * kStep;
     next = next.cwiseMax(lower).cwiseMin(upper);
     if (next == q) break;  // every closing joint at its limit
     q = next;
   }
-  size.closed_q = q.tail(model.hand_dof);
-  double aperture = std::numeric_limits<double>::infinity();
-  for (const auto& c : curves.points) {
-    const auto [diameter, centre] = inscribed_circle(c);
-    aperture = std::min(aperture, diameter);
-    size.closed_centre += centre / static_cast<double>(curves.points.size());
-  }
-  size.closed_aperture =
-      std::isfinite(aperture) ? std::max(0.0, aperture - size.finger_thickness) : 0.0;
-  return size;
+  while (sizes.size() < goals.size()) closed(q, curves, ratio);
+  return sizes;
+}
+
+HandSize hand_size(const RobotModel& model) {
+  return hand_sizes(model, {model.vlink_goal}).front();
 }
 
 }  // namespace claspplan::robots

@@ -2,6 +2,8 @@
 // typed in): how wide a hole its fingers need, and how thick a bar its closed hand can enclose.
 #pragma once
 
+#include <vector>
+
 #include <Eigen/Core>
 
 #include "robots/robot_model.hpp"
@@ -36,5 +38,9 @@ double cross_section(const CollisionShape& s);
 /// 1 - cord / closed length (the factor of paper eq. 2) reaches the hand's `vlink_goal`, or the
 /// joints reach their limits.
 HandSize hand_size(const RobotModel& model);
+
+/// hand_size(model) with vlink_goal = goals[i], for each of the goals (ascending), from one
+/// closing sweep. Throws std::invalid_argument when the goals are not in ascending order.
+std::vector<HandSize> hand_sizes(const RobotModel& model, const std::vector<double>& goals);
 
 }  // namespace claspplan::robots

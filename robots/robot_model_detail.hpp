@@ -38,10 +38,21 @@ struct UrdfJoints {
 UrdfJoints read_urdf_tree(const urdf::ModelInterface& urdf, const std::string& urdf_file,
                           RobotModel& model, const std::vector<std::string>& left_out = {});
 
+/// The rotation of URDF roll, pitch, yaw (fixed axes X, then Y, then Z).
+inline Eigen::Matrix3d rpy_rotation(const Eigen::Vector3d& rpy) {
+  return (Eigen::AngleAxisd(rpy.z(), Eigen::Vector3d::UnitZ()) *
+          Eigen::AngleAxisd(rpy.y(), Eigen::Vector3d::UnitY()) *
+          Eigen::AngleAxisd(rpy.x(), Eigen::Vector3d::UnitX()))
+      .toRotationMatrix();
+}
+
 /// Appends a second URDF's tree (a hand's) below link `parent`, its root at `origin` in the
-/// parent's frame through a fixed joint "<parent>_to_<root>". Link and joint names must be new.
+/// parent's frame through a fixed joint "<parent>_to_<root>". `root` (default: the URDF's root)
+/// takes only the subtree below that link: a hand cut from a whole robot's URDF (a humanoid's).
+/// Link and joint names must be new.
 void attach_urdf_tree(const urdf::ModelInterface& urdf, const std::string& urdf_file, int parent,
-                      const Eigen::Isometry3d& origin, RobotModel& model, UrdfJoints& joints);
+                      const Eigen::Isometry3d& origin, RobotModel& model, UrdfJoints& joints,
+                      const std::string& root = "");
 
 /// Reads a URDF: (its name for messages, its text), given the name the hand description uses.
 using UrdfReader = std::function<std::pair<std::string, std::string>(const std::string&)>;

@@ -260,14 +260,20 @@ UrdfJoints read_urdf_tree(const urdf::ModelInterface& urdf, const std::string& u
 }
 
 void attach_urdf_tree(const urdf::ModelInterface& urdf, const std::string& urdf_file, int parent,
-                      const Eigen::Isometry3d& origin, RobotModel& m, UrdfJoints& joints) {
-  const auto root = urdf.getRoot();
-  if (!root) fail(urdf_file, "the URDF has no root link");
+                      const Eigen::Isometry3d& origin, RobotModel& m, UrdfJoints& joints,
+                      const std::string& root_link) {
+  const auto root = root_link.empty() ? urdf.getRoot() : urdf.getLink(root_link);
+  if (!root)
+    fail(urdf_file, root_link.empty()
+                        ? std::string("the URDF has no root link")
+                        : "the hand's root link '" + root_link + "' is not in the URDF");
   const int first = static_cast<int>(m.links.size());
   ShapeReader reader{urdf_file, m.warnings, {}, {}};
   add_subtree(*root, parent, reader, m, joints);
   m.links[first].origin = origin;
   m.links[first].joint = m.links[parent].name + "_to_" + root->name;  // the mount, fixed
+  m.links[first].type = JointType::kFixed;  // a subtree's root: not the joint above it
+  joints.joint_of_link.erase(root->name);
   std::map<std::string, int> names;
   for (std::size_t i = 0; i < m.links.size(); ++i)
     if (!names.emplace(m.links[i].name, static_cast<int>(i)).second)

@@ -133,6 +133,42 @@ TEST(DescribeCommand, TheCommittedDraftsClaspThePurse) {
   }
 }
 
+// A public hand of one motor: Romeo's left hand (every finger joint mimics LHand, closed at 0),
+// cut from the humanoid's unmodified URDF below its wrist and mounted on the Panda. The draft finds
+// its four fingers through their mimic joints and opens the motor at its upper limit; the hand is
+// small (2 cm inside when closed), so the purse's 2.4 cm strap is refused for that reason.
+TEST(DescribeCommand, DraftsAOneMotorHandCutFromAHumanoid) {
+  TempDir dir;
+  const std::string urdfs = kRobots + "/example-robot-data/robots/";
+  const std::string out = dir.file("panda_romeo.yaml");
+  const CliResult d = run_cli(
+      {"describe", urdfs + "panda_description/urdf/panda.urdf", "--hand-urdf",
+       urdfs + "romeo_description/urdf/romeo.urdf", "--hand-urdf-root", "l_wrist", "--mount",
+       "panda_link8", "--mount-rpy", "0,-1.5707963,0", "--replaces", "panda_hand", "--samples",
+       "200", "--home=0,-0.785398,0,-2.356194,0,1.570796,0.785398", "-o", out, "--json"});
+  ASSERT_EQ(d.exit_code, 0) << d.err;
+  const auto j = d.json();
+  EXPECT_EQ(j["arm_dof"].get<int>(), 7);
+  EXPECT_EQ(j["hand_dof"].get<int>(), 1);
+  ASSERT_EQ(j["fingers"].size(), 4u);
+  const std::string yaml = slurp(out);
+  EXPECT_NE(yaml.find("{name: LHand, open: 1, closing: -1}"), std::string::npos) << yaml;
+  EXPECT_NE(yaml.find("root: l_wrist"), std::string::npos) << yaml;
+  EXPECT_LT(j["hand"]["widest_bar"].get<double>(), 0.02);
+  const CliResult purse =
+      run_cli({"run", kRobots + "/scenarios/purse_1_panda_allegro.yaml", "--robot", out,
+               "--max-cycles", "5", "--no-pictures", "--out", dir.file("purse")});
+  EXPECT_EQ(purse.exit_code, 1) << purse.out << purse.err;
+  EXPECT_NE((purse.out + purse.err).find("bar too thick for this hand"), std::string::npos)
+      << purse.out << purse.err;
+  // A hand root that the URDF does not have.
+  EXPECT_EQ(run_cli({"describe", urdfs + "panda_description/urdf/panda.urdf", "--hand-urdf",
+                     urdfs + "romeo_description/urdf/romeo.urdf", "--hand-urdf-root", "l_palm",
+                     "--mount", "panda_link8", "--replaces", "panda_hand", "-o", dir.file("x")})
+                .exit_code,
+            2);
+}
+
 TEST(DescribeCommand, BadInputIsExitTwoWithAReason) {
   TempDir dir;
   const std::string urdfs = kRobots + "/example-robot-data/robots/";

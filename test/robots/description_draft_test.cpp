@@ -35,10 +35,10 @@ std::string cylinder(const std::string& link, double length, double radius = 0.0
 
 std::string joint(const std::string& name, const std::string& type, const std::string& parent,
                   const std::string& child, const std::string& xyz, const std::string& axis,
-                  const std::string& extra = "") {
+                  const std::string& extra = "", const std::string& rpy = "0 0 0") {
   return "<joint name=\"" + name + "\" type=\"" + type + "\"><parent link=\"" + parent +
-         "\"/><child link=\"" + child + "\"/><origin xyz=\"" + xyz + "\"/><axis xyz=\"" + axis +
-         "\"/>" + extra + "</joint>\n";
+         "\"/><child link=\"" + child + "\"/><origin xyz=\"" + xyz + "\" rpy=\"" + rpy +
+         "\"/><axis xyz=\"" + axis + "\"/>" + extra + "</joint>\n";
 }
 
 const std::string kFlexLimits = "<limit lower=\"-0.2\" upper=\"1.6\" effort=\"1\" velocity=\"1\"/>";
@@ -52,6 +52,28 @@ std::string finger(const Finger& f) {
   u += joint(f.name + "_1", "revolute", "palm", f.name + "_proximal", base, axis, kFlexLimits);
   u += joint(f.name + "_2", "revolute", f.name + "_proximal", f.name + "_distal", "0 0 0.05", axis,
              kFlexLimits + (f.mimic ? "<mimic joint=\"" + f.name + "_1\"/>" : ""));
+  u += joint(f.name + "_tip_joint", "fixed", f.name + "_distal", f.name + "_tip", "0 0 0.04",
+             "0 0 1");
+  return u;
+}
+
+// A finger of a one-motor hand closed at 0 (as Romeo's and NAO's are): each joint's origin turns
+// it 0.3 rad toward the opposite finger, and the value 0.3, its upper limit, turns it straight.
+// Every joint but `leader` mimics `leader`.
+std::string coupled_finger(const Finger& f, const std::string& leader) {
+  const std::string axis = f.flex_sign > 0 ? "0 -1 0" : "0 1 0";
+  const std::string rpy = f.flex_sign > 0 ? "0 0.3 0" : "0 -0.3 0";
+  const std::string base = std::to_string(f.x) + " " + std::to_string(f.y) + " 0";
+  const auto limits = [&](const std::string& name) {
+    return "<limit lower=\"0\" upper=\"0.3\" effort=\"1\" velocity=\"1\"/>" +
+           (name == leader ? "" : "<mimic joint=\"" + leader + "\"/>");
+  };
+  std::string u = cylinder(f.name + "_proximal", 0.05) + cylinder(f.name + "_distal", 0.04) +
+                  "<link name=\"" + f.name + "_tip\"/>\n";
+  u += joint(f.name + "_1", "revolute", "palm", f.name + "_proximal", base, axis,
+             limits(f.name + "_1"), rpy);
+  u += joint(f.name + "_2", "revolute", f.name + "_proximal", f.name + "_distal", "0 0 0.05", axis,
+             limits(f.name + "_2"), rpy);
   u += joint(f.name + "_tip_joint", "fixed", f.name + "_distal", f.name + "_tip", "0 0 0.04",
              "0 0 1");
   return u;
@@ -264,6 +286,52 @@ TEST(DescriptionDraft, AHandFromItsOwnUrdfIsMountedAndTheArmsGripperLeftOut) {
   EXPECT_EQ(d.model.fingers.size(), 3u);
   EXPECT_LT(d.model.find_link("g_tip"), 0);
   EXPECT_NE(d.yaml.find("replaces: [palm]"), std::string::npos) << d.yaml;
+}
+
+// A one-motor hand closed at 0, cut from a whole robot's URDF (hand_urdf root), mounted turned:
+// its fingers are found through their mimic joints, the motor opens at its upper limit, and the
+// tips and v_fwd are read at the open hand, not at the fist the joints' zero makes.
+TEST(DescriptionDraft, AOneMotorHandClosedAtZeroIsCutFromAWholeRobot) {
+  Folder dir;
+  std::string whole = robot_urdf({});  // an arm and a palm; its fingers follow a_1
+  std::string fingers;
+  // The thumb c stands 12 cm across: the fist at 0 does not cross the fingers.
+  for (const Finger& f :
+       {Finger{"a", 0.0, 0.02, 1}, Finger{"b", 0.0, -0.02, 1}, Finger{"c", 0.12, 0.0, -1}})
+    fingers += coupled_finger(f, "a_1");
+  whole.insert(whole.rfind("</robot>"), fingers);
+  DraftOptions o;
+  o.hand_urdf = dir.write("whole.urdf", whole);
+  o.hand_urdf_root = "palm";
+  o.mount = "wrist";
+  o.mount_xyz = {0, 0, 0.11};
+  o.mount_rpy = {0, 0, M_PI / 2};
+  o.replaces = {"palm"};
+  const DescriptionDraft d = draft(dir, robot_urdf({{"g", 0.0, 0.0, 1}, {"h", 0.06, 0.0, -1}}), o);
+  const RobotModel& m = d.model;
+  EXPECT_EQ(m.arm_dof, 3);
+  ASSERT_EQ(m.hand_dof, 1);
+  const Joint& motor = m.joints[m.arm_dof];
+  EXPECT_EQ(motor.name, "a_1");
+  EXPECT_EQ(motor.open, 0.3);
+  EXPECT_EQ(motor.closing, -1);
+  ASSERT_EQ(m.fingers.size(), 3u);
+  for (const auto& f : m.fingers) EXPECT_EQ(f.joints, std::vector<int>{m.arm_dof}) << f.name;
+  // Along the straight fingers (the palm's z), not tilted toward the fist.
+  EXPECT_NEAR(m.v_fwd.vector.z(), 1.0, 1e-9);
+  EXPECT_GT(hand_size(m).closed_aperture, 0.01);
+  // The palm hangs off the arm's wrist, turned a quarter turn about z.
+  const int palm = m.link_index("palm");
+  EXPECT_EQ(m.links[m.links[palm].parent].name, "wrist");
+  RobotData data(m);
+  forward_kinematics(m, m.home, data);
+  const Eigen::Matrix3d turn =
+      data.link_poses[m.link_index("wrist")].linear().transpose() * data.link_poses[palm].linear();
+  EXPECT_NEAR(turn(1, 0), 1.0, 1e-9);
+  EXPECT_NE(d.yaml.find("root: palm"), std::string::npos) << d.yaml;
+  // A root that is not in the URDF is refused.
+  o.hand_urdf_root = "no_such_link";
+  EXPECT_THROW(draft(dir, robot_urdf({}), o), InputError);
 }
 
 }  // namespace

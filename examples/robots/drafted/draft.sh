@@ -20,3 +20,9 @@ out=examples/robots/drafted
   --hand-urdf $allegro --mount j2s6s200_end_effector --mount-xyz 0,0,0.095 \
   --replaces j2s6s200_link_finger_1 --replaces j2s6s200_link_finger_2 --mesh-hulls \
   --home 4.80,2.92,1.0,4.2,1.44,1.32 -o $out/jaco_allegro.yaml
+# Romeo's left hand (one motor, LHand; every finger joint mimics it; closed at 0), cut from the
+# humanoid's URDF below its wrist and turned so that its fingers point along the flange's z.
+"$claspplan" describe $robots/panda_description/urdf/panda.urdf --name panda_romeo \
+  --hand-urdf $robots/romeo_description/urdf/romeo.urdf --hand-urdf-root l_wrist \
+  --mount panda_link8 --mount-rpy 0,-1.5707963,0 --replaces panda_hand \
+  --home=0,-0.785398,0,-2.356194,0,1.570796,0.785398 -o $out/panda_romeo.yaml
