@@ -15,6 +15,7 @@ packages=(
   libqhull-dev                           # convex hulls of robot meshes (robots, collision.mesh_hulls)
   python3-dev pybind11-dev python3-numpy # the Python package (examples/python)
   python3-pytest python3-matplotlib      # its tests and examples
+  python3-venv python3-pip               # `pip install .` checked in a virtual environment (.ci/pip.sh)
   libgtest-dev libbenchmark-dev          # tests and kernel benchmarks
   clang-14 libclang-rt-14-dev            # libFuzzer targets (test/fuzz, .ci/fuzz.sh)
 )

@@ -10,6 +10,7 @@
 #include "core/file_io.hpp"
 #include "core/input_error.hpp"
 #include "core/parallel.hpp"
+#include "core/stopped.hpp"
 #include "perception/cloud_filters.hpp"
 #include "perception/depth_render.hpp"
 #include "perception/sensor_cloud.hpp"
@@ -259,6 +260,7 @@ ObjectModel build_object_model(const PerceptionInputs& in, const PerceptionOptio
   auto t = Clock::now();
   Prepared r = prepare(in, o);
   m.timings.preprocess = seconds_since(t);
+  stop_point(o.stop);
   m.cloud = std::move(r.cloud);
   m.views = std::move(r.views);
   m.input_points = r.input_points;
@@ -282,9 +284,11 @@ ObjectModel build_object_model(const PerceptionInputs& in, const PerceptionOptio
   t = Clock::now();
   const DelaunayGraph dg = delaunay_3d(m.cloud);
   m.timings.delaunay = seconds_since(t);
+  stop_point(o.stop);
   t = Clock::now();
   m.complex = build_complex(dg, m.d);
   m.timings.complex = seconds_since(t);
+  stop_point(o.stop);
   // Progress only once the input is known to be valid, so that errors stay one line on stderr.
   if (m.plane_points_removed > 0)
     say(o, fmt("perception: removed the supporting plane (%.0f points)", m.plane_points_removed));
@@ -313,6 +317,7 @@ ObjectModel build_object_model(const PerceptionInputs& in, const PerceptionOptio
   }
   m.beta1 = basis.beta1;
   m.timings.homology = seconds_since(t);
+  stop_point(o.stop);
   say(o, fmt("perception: beta1 = %.0f (%.0f Dijkstra roots)", basis.beta1, basis.roots));
 
   t = Clock::now();

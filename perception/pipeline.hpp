@@ -103,6 +103,8 @@ struct PerceptionOptions {
   SensedSpaceOptions sensed;
   /// Optional progress messages for long steps (the CLI prints them on stderr).
   std::function<void(const std::string&)> progress;
+  /// Polled between the steps; true ends the call with claspplan::Stopped (core/stopped.hpp).
+  std::function<bool()> stop;
 };
 
 struct PerceptionTimings {

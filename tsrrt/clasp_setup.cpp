@@ -237,7 +237,7 @@ ClaspResult plan_clasp(const ClaspRequest& request) {
     planning.planner.time_limit = 0.0;
   }
   if (request.time_limit) planning.planner.time_limit = *request.time_limit;
-  if (request.stop) planning.planner.stop = request.stop;
+  if (request.stop) planning.planner.stop = planning.secure.stop = perception.stop = request.stop;
 
   ClaspResult r;
   r.start = model.complete_q(

@@ -88,7 +88,9 @@ struct ClaspRequest {
   /// time_limit is given too. Results then do not depend on the machine's speed or load.
   std::optional<int> max_cycles;
   std::optional<double> time_limit;  ///< seconds: replaces the planner's time limit
-  /// kPlan: polled during the search; true ends it early (PlannerParameters::stop).
+  /// Polled on the calling thread between perception's steps (true: claspplan::Stopped is
+  /// thrown, core/stopped.hpp), during the search (true ends it: PlannerParameters::stop) and
+  /// between the rounds and stages of each secure-clasp check (true: not passed).
   std::function<bool()> stop;
 
   /// Optional progress lines (perception steps, clasp candidates, ...).

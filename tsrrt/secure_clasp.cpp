@@ -273,6 +273,11 @@ void run_escape_stages(const robots::RobotModel& model, robots::CollisionWorld& 
   bool stopped = false;
   for (const EscapeStage stage :
        {EscapeStage::kEscapeSearch, EscapeStage::kGravity, EscapeStage::kApproach}) {
+    if (!stopped && o.stop && o.stop()) {  // ended by the caller: not passed
+      stopped = true;
+      report.secure = false;
+      report.timed_out = true;
+    }
     if (stopped) {
       report.stages.push_back({stage_name(stage), false, false, false, 0, 0.0, std::nullopt});
       continue;
@@ -336,6 +341,7 @@ SecureClaspReport run_check(const robots::RobotModel& model,
       if (report.escape_motion < 0) report.escape_motion = s.escape_motion;
       if (!report.escape) report.escape = s.T;
     }
+    if (o.stop && o.stop()) report.timed_out = true;
     stop = end >= o.motions || report.escaped_sequences > 0 || report.timed_out;
   }
   report.secure = report.escaped_sequences == 0 && !report.timed_out;

@@ -4,6 +4,7 @@
 
 #include <chrono>
 #include <cstdint>
+#include <functional>
 #include <memory>
 #include <optional>
 #include <string>
@@ -41,6 +42,9 @@ struct SecureClaspOptions {
   int threads = 0;
   /// Give up (not secure, timed_out) once this passes; none by default.
   std::optional<std::chrono::steady_clock::time_point> deadline;
+  /// Polled on the calling thread between rounds of motions and between stages: true gives up
+  /// as the deadline does (Ctrl-C in Python).
+  std::function<bool()> stop;
   /// After the random motions pass: the escape stages (escape_search.hpp), an RRT-Connect escape
   /// search and the energy-bounded gravity and approach pulls. Random motions accept hooks.
   bool escape_stages = true;

@@ -11,6 +11,7 @@
 #include <pybind11/stl.h>
 
 #include "core/input_error.hpp"
+#include "core/stopped.hpp"
 #include "examples/result_file.hpp"
 #include "examples/run_scenario.hpp"
 #include "examples/scenario.hpp"
@@ -239,6 +240,7 @@ struct PlanArgs {
   std::optional<double> goal_linking;
   std::optional<int> pre_expansions, max_cycles;
   std::optional<double> random_probability, time_limit;
+  bool controller_only = false;
 };
 
 const char* status_name(tsrrt::ClaspStatus s) {
@@ -269,6 +271,7 @@ py::dict plan(const Robot& robot, const PlanArgs& a) {
   }
   r.loop_hint = a.near;
   r.goal_linking = a.goal_linking;
+  if (a.controller_only) r.mode = tsrrt::ClaspMode::kControllerOnly;
   if (a.pre_expansions) r.planning.planner.pre_expansions = *a.pre_expansions;
   if (a.random_probability) r.planning.planner.random_probability = *a.random_probability;
   r.seed = a.object.seed;
@@ -277,9 +280,10 @@ py::dict plan(const Robot& robot, const PlanArgs& a) {
   Interrupt interrupt;
   r.stop = interrupt.poll();
   tsrrt::ClaspResult result;
-  {
+  try {
     py::gil_scoped_release release;
     result = tsrrt::plan_clasp(r);
+  } catch (const Stopped&) {  // in perception: the KeyboardInterrupt is raised below
   }
   interrupt.rethrow();
   py::dict out;
@@ -316,7 +320,7 @@ py::dict plan(const Robot& robot, const PlanArgs& a) {
 std::pair<int, std::string> run_file(const std::string& path, std::optional<std::uint64_t> seed,
                                      std::optional<int> max_cycles,
                                      std::optional<double> time_limit, const std::string& robot,
-                                     const std::string& out, bool pictures) {
+                                     const std::string& out, bool pictures, bool controller_only) {
   cli::Scenario s = cli::load_scenario(path);
   if (!robot.empty()) cli::use_robot(s, robot);
   cli::RunOptions o;
@@ -325,13 +329,15 @@ std::pair<int, std::string> run_file(const std::string& path, std::optional<std:
   o.max_cycles = max_cycles;
   o.time_limit = time_limit;
   o.pictures = pictures;
+  o.controller_only = controller_only;
   o.quiet = true;
   Interrupt interrupt;
   o.stop = interrupt.poll();
   cli::RunOutcome r;
-  {
+  try {
     py::gil_scoped_release release;
     r = cli::run_scenario(s, o);
+  } catch (const Stopped&) {  // in perception: the KeyboardInterrupt is raised below
   }
   interrupt.rethrow();
   return {r.exit_code, r.summary.dump()};
@@ -411,11 +417,16 @@ PYBIND11_MODULE(_claspplan, m) {
          const Crop& crop, int points, double d, std::uint64_t seed, bool no_reading_is_free) {
         PerceiveArgs a = object_args(depth, clouds, crop, points, d, seed, no_reading_is_free);
         a.robot = robot;
+        perception::PerceptionOptions options = options_of(a);
+        Interrupt interrupt;
+        options.stop = interrupt.poll();
         perception::ObjectModel model;
-        {
+        try {
           py::gil_scoped_release release;
-          model = perception::build_object_model(inputs_of(a), options_of(a));
+          model = perception::build_object_model(inputs_of(a), options);
+        } catch (const Stopped&) {
         }
+        interrupt.rethrow();
         return object_dict(model);
       },
       py::arg("depth"), py::arg("clouds"), py::arg("robot"), py::arg("crop"), py::arg("points"),
@@ -450,7 +461,8 @@ PYBIND11_MODULE(_claspplan, m) {
          int points, double d, int targets, std::optional<Eigen::Vector3d> near,
          std::optional<double> goal_linking, std::optional<int> pre_expansions,
          std::optional<double> random_probability, std::uint64_t seed,
-         std::optional<int> max_cycles, std::optional<double> time_limit, bool no_reading_is_free) {
+         std::optional<int> max_cycles, std::optional<double> time_limit, bool no_reading_is_free,
+         bool controller_only) {
         PlanArgs a;
         a.object = object_args(depth, clouds, crop, points, d, seed, no_reading_is_free);
         a.start = start;
@@ -462,12 +474,14 @@ PYBIND11_MODULE(_claspplan, m) {
         a.random_probability = random_probability;
         a.max_cycles = max_cycles;
         a.time_limit = time_limit;
+        a.controller_only = controller_only;
         return plan(robot, a);
       },
       py::arg("robot"), py::arg("start"), py::arg("depth"), py::arg("clouds"), py::arg("boxes"),
       py::arg("crop"), py::arg("points"), py::arg("d"), py::arg("targets"), py::arg("near"),
       py::arg("goal_linking"), py::arg("pre_expansions"), py::arg("random_probability"),
-      py::arg("seed"), py::arg("max_cycles"), py::arg("time_limit"), py::arg("no_reading_is_free"));
+      py::arg("seed"), py::arg("max_cycles"), py::arg("time_limit"), py::arg("no_reading_is_free"),
+      py::arg("controller_only"));
   m.def(
       "verify_file",
       [](const std::string& path, std::optional<std::uint64_t> seed) {
@@ -478,9 +492,15 @@ PYBIND11_MODULE(_claspplan, m) {
         } else if (r.seed) {
           check.seed = *r.seed;
         }
-        py::gil_scoped_release release;
-        const tsrrt::SecureClaspReport v = tsrrt::check_secure_clasp(
-            r.model, r.object_vertices, r.object_triangles, r.final_q, r.loop, check);
+        Interrupt interrupt;
+        check.stop = interrupt.poll();
+        tsrrt::SecureClaspReport v;
+        {
+          py::gil_scoped_release release;
+          v = tsrrt::check_secure_clasp(r.model, r.object_vertices, r.object_triangles, r.final_q,
+                                        r.loop, check);
+        }
+        interrupt.rethrow();
         return cli::verification_json(v).dump();
       },
       py::arg("path"), py::arg("seed"));
@@ -488,9 +508,9 @@ PYBIND11_MODULE(_claspplan, m) {
       "run_file",
       [](const std::string& path, std::optional<std::uint64_t> seed, std::optional<int> max_cycles,
          std::optional<double> time_limit, const std::string& robot, const std::string& out,
-         bool pictures) {
-        return run_file(path, seed, max_cycles, time_limit, robot, out, pictures);
+         bool pictures, bool controller_only) {
+        return run_file(path, seed, max_cycles, time_limit, robot, out, pictures, controller_only);
       },
       py::arg("path"), py::arg("seed"), py::arg("max_cycles"), py::arg("time_limit"),
-      py::arg("robot"), py::arg("out"), py::arg("pictures"));
+      py::arg("robot"), py::arg("out"), py::arg("pictures"), py::arg("controller_only"));
 }

@@ -7,6 +7,7 @@
 
 #include <gtest/gtest.h>
 
+#include "core/stopped.hpp"
 #include "examples/objects.hpp"
 #include "perception/cloud_filters.hpp"
 #include "test/support/temp_dir.hpp"
@@ -75,6 +76,26 @@ TEST(Topology, SphereHasNoLoops) {
     EXPECT_TRUE(m.loops.empty());
     EXPECT_TRUE(m.targets.empty());
     EXPECT_EQ(m.best(), nullptr);
+  }
+}
+
+// A caller's stop (Ctrl-C in Python) ends perception between its steps with Stopped; when it
+// never asks, nothing changes.
+TEST(Topology, AStopEndsPerceptionBetweenItsSteps) {
+  PerceptionInputs in;
+  in.meshes.push_back(torus());
+  PerceptionOptions o;
+  o.points = 600;
+  int polls = 0;
+  o.stop = [&] { return ++polls < 0; };
+  const ObjectModel m = build_object_model(in, o);
+  EXPECT_EQ(m.beta1, from_mesh(torus(), 1, 0.0, {}, 600).beta1);
+  EXPECT_EQ(polls, 4);
+  for (int k = 1; k <= polls; ++k) {
+    int n = 0;
+    o.stop = [&] { return ++n == k; };
+    EXPECT_THROW(build_object_model(in, o), Stopped) << k;
+    EXPECT_EQ(n, k);
   }
 }
 

@@ -135,17 +135,23 @@ def test_run_equals_the_command_line_for_the_same_seed(tmp_path):
     assert again["secure"] and again["stages"] == checked["stages"]
 
 
-def test_plan_from_arrays_equals_the_scenario_run():
-    # bag_2_sdh.yaml's inputs and options, given as arrays: the same plan, waypoint for waypoint.
+def bag_2_arrays():
+    """bag_2_sdh.yaml's inputs and options as plan()'s arguments."""
     view = os.path.join(EXAMPLES, "depth", "bag_2")
     depth = [claspplan.read_depth(os.path.join(view, f"view_{i}.png"),
                                   os.path.join(view, f"view_{i}.yaml")) for i in range(3)]
-    mine = claspplan.plan(
-        "kr5_sdh", [0, -1.9, 1.5707963, 0, 1.9, 0], depth=[d[:3] for d in depth],
+    return dict(
+        robot="kr5_sdh", start=[0, -1.9, 1.5707963, 0, 1.9, 0], depth=[d[:3] for d in depth],
         no_reading_is_free=depth[0][3],
         environment=[((2.5, 2.5, 0.05), (0.5, 0, -0.025)), ((0.6, 0.6, 0.2), (0.55, 0, 0.1))],
         crop=((0.46, -0.21, 0.204), (0.64, 0.21, 0.675)), targets=23, near=(0.55, 0, 0.56),
-        goal_linking=0.85, pre_expansions=20, random_probability=0.1, seed=1, max_cycles=200)
+        goal_linking=0.85, seed=1)
+
+
+def test_plan_from_arrays_equals_the_scenario_run():
+    # bag_2_sdh.yaml's inputs and options, given as arrays: the same plan, waypoint for waypoint.
+    mine = claspplan.plan(**bag_2_arrays(), pre_expansions=20, random_probability=0.1,
+                          max_cycles=200)
     theirs = claspplan.run(os.path.join(EXAMPLES, "scenarios", "bag_2_sdh.yaml"), seed=1,
                            max_cycles=200)
     assert mine["status"] == "success" and mine["verified"] and theirs["verified"]
@@ -159,6 +165,36 @@ def test_plan_from_arrays_equals_the_scenario_run():
                            points=ring(centre=(0.55, 0, 0.3)) + 0.0, sensor_origin=(0, 0, 1),
                            max_cycles=10)
     assert empty["status"] == "no_claspable_loop" and not empty["verified"]
+
+
+def test_controller_only_from_arrays_equals_the_scenario_run():
+    # bag_2_sdh.yaml's arrays with the clasp controller alone, as `run --controller-only` does: the
+    # same steps and the same outcome (here its thumb runs into space no camera saw).
+    mine = claspplan.plan(**bag_2_arrays(), controller_only=True)
+    theirs = claspplan.run(os.path.join(EXAMPLES, "scenarios", "bag_2_sdh.yaml"), seed=1,
+                           controller_only=True)
+    assert theirs["result"]["mode"] == "controller"
+    assert mine["reason"] == theirs["result"]["reason"]
+    np.testing.assert_array_equal(mine["path"], theirs["path"])
+    np.testing.assert_array_equal(mine["final_q"], theirs["final_q"])
+    assert mine["cycles"] == 0
+
+
+def test_ctrl_c_ends_perception():
+    # SIGINT while K_d is built on 50,000 points of a torus (about 4 s uninterrupted here): the
+    # call raises KeyboardInterrupt. That perception stops at its next step rather than running
+    # on is checked in C++ (Topology.AStopEndsPerceptionBetweenItsSteps).
+    rng = np.random.default_rng(1)
+    u, v = rng.uniform(0, 2 * np.pi, (2, 200000))
+    torus = np.stack([(0.1 + 0.03 * np.cos(v)) * np.cos(u), (0.1 + 0.03 * np.cos(v)) * np.sin(u),
+                      0.03 * np.sin(v)], axis=1)
+    timer = threading.Timer(0.5, lambda: os.kill(os.getpid(), signal.SIGINT))
+    timer.start()
+    try:
+        with pytest.raises(KeyboardInterrupt):
+            claspplan.perceive(points=torus, n_points=50000)
+    finally:
+        timer.cancel()
 
 
 def test_ctrl_c_ends_a_search(tmp_path):

@@ -5,6 +5,7 @@
 
 #include <gtest/gtest.h>
 
+#include "core/stopped.hpp"
 #include "examples/objects.hpp"
 #include "perception/depth_render.hpp"
 #include "test/support/purse_request.hpp"
@@ -114,11 +115,15 @@ TEST_F(PurseFromDepth, SameRequestSameResult) {
 TEST_F(PurseFromDepth, AStopEndsTheSearch) {
   tsrrt::ClaspRequest request = request_for(purse());
   int polls = 0;
-  request.stop = [&polls] { return ++polls > 3; };
+  // Perception polls between its four steps; a stop there throws.
+  request.stop = [&polls] { return ++polls == 2; };
+  EXPECT_THROW(plan_clasp(request), Stopped);
+  polls = 0;
+  request.stop = [&polls] { return ++polls > 4; };  // once perception is done
   const tsrrt::ClaspResult stopped = plan_clasp(request);
   EXPECT_FALSE(stopped.succeeded());
   EXPECT_EQ(stopped.reason.rfind("search stopped by the caller", 0), 0u) << stopped.reason;
-  EXPECT_EQ(polls, 4);
+  EXPECT_EQ(polls, 5);
   request.stop = [] { return false; };
   const tsrrt::ClaspResult unstopped = plan_clasp(request);
   EXPECT_EQ(unstopped.motion.waypoints, result_->motion.waypoints);

@@ -109,6 +109,23 @@ TEST(SecureClasp, SameReportForAnyNumberOfThreads) {
   EXPECT_GT(escapes, 0);
 }
 
+// A caller's stop (Ctrl-C in Python) ends a check as its deadline does: not passed, timed out.
+TEST(SecureClasp, AStopEndsTheCheckUnpassed) {
+  const Pose& p = saved_poses().front();  // a planned clasp, as planned
+  tsrrt::SecureClaspOptions o;
+  o.sequences = 5;
+  o.motions = 60;
+  int polls = 0;
+  o.stop = [&] { return ++polls < 0; };
+  const auto asked = tsrrt::check_secure_clasp(*p.robot, p.vertices, p.triangles, p.q, p.loop, o);
+  EXPECT_TRUE(asked.secure);
+  EXPECT_GT(polls, 1);  // between the rounds and the stages
+  o.stop = [] { return true; };
+  const auto stopped = tsrrt::check_secure_clasp(*p.robot, p.vertices, p.triangles, p.q, p.loop, o);
+  EXPECT_FALSE(stopped.secure);
+  EXPECT_TRUE(stopped.timed_out);
+}
+
 // A checker keeps the object's geometry between hands: reused over the poses of one object (the
 // fingers opened step by step), it reports what a fresh check of each pose reports.
 TEST(SecureClasp, ACheckerReusedOverHandsReportsAsFreshChecks) {

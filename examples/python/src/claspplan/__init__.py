@@ -146,6 +146,7 @@ def plan(
     max_cycles: Optional[int] = None,
     time_limit: Optional[float] = None,
     no_reading_is_free: bool = False,
+    controller_only: bool = False,
 ) -> Dict[str, Any]:
     """Plans a clasp (paper Alg. 1: TS-RRT, the fingers closed and the clasp verified at each goal)
     from arrays: perception as in perceive(), then the search from `start` (the arm's joints, or
@@ -155,7 +156,8 @@ def plan(
     targets: clasp targets on the loop; near: clasp the claspable loop nearest this point;
     goal_linking: the virtual-linking goal (default: the robot's); pre_expansions,
     random_probability: the planner's n and P (paper Sec. V); seed, max_cycles, time_limit as for
-    `claspplan run`.
+    `claspplan run`. controller_only: the clasp controller alone from `start` toward the nearest
+    clasp target, no search (`claspplan run --controller-only`); path is then its steps.
 
     Returns a dict: status ("success", "no_claspable_loop", "no_clasp"), verified, reason, path
     (M x dof), final_q, start, loop (k x 3), targets (t x 3), target, virtual_linking,
@@ -171,7 +173,7 @@ def plan(
         int(n_points), float(d), int(targets),
         None if near is None else np.asarray(near, dtype=np.float64).reshape(3), goal_linking,
         pre_expansions, random_probability, int(seed), max_cycles, time_limit,
-        bool(no_reading_is_free))
+        bool(no_reading_is_free), bool(controller_only))
     result["verification"] = json.loads(result["verification"])
     return result
 
@@ -198,9 +200,10 @@ def run(
     robot: Optional[Union[str, Robot]] = None,
     out_dir: Optional[str] = None,
     pictures: bool = False,
+    controller_only: bool = False,
 ) -> Dict[str, Any]:
     """Plans a clasp for a scenario file as `claspplan run SCENARIO --json` does, with the same
-    result for the same inputs and seed.
+    result for the same inputs and seed; controller_only as `--controller-only`.
 
     Returns `run --json`'s summary with, added: exit_code (0 a verified clasp, 1 none), result
     (result.json), path (M x dof joint waypoints, start to the closed hand), final_q (dof,) and
@@ -211,7 +214,7 @@ def run(
     with tempfile.TemporaryDirectory(prefix="claspplan-") as tmp:
         out = out_dir or tmp
         code, text = _claspplan.run_file(os.fspath(scenario), seed, max_cycles, time_limit, name,
-                                         out, pictures)
+                                         out, pictures, controller_only)
         summary = json.loads(text)
         with open(os.path.join(out, "result.json"), encoding="utf-8") as f:
             result = json.load(f)

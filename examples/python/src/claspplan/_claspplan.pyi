@@ -74,6 +74,7 @@ def plan(
     max_cycles: Optional[int],
     time_limit: Optional[float],
     no_reading_is_free: bool,
+    controller_only: bool,
 ) -> Dict[str, object]: ...
 def verify_file(path: str, seed: Optional[int]) -> str: ...
 def read_depth(png: str, camera: str) -> Tuple[np.ndarray, np.ndarray, np.ndarray, bool]: ...
@@ -86,4 +87,5 @@ def run_file(
     robot: str,
     out: str,
     pictures: bool,
+    controller_only: bool,
 ) -> Tuple[int, str]: ...
