@@ -7,6 +7,7 @@
 #   -DBUILD_DIR=<claspplan build> -DCONSUMER_DIR=<test/package/consumer> -DWORK_DIR=<scratch>
 #   -DAPI_EXAMPLE=<examples/plan_from_depth.cpp> -DDEPTH_DIR=<examples/depth/bag_2>
 #   -DGENERATOR=... -DBUILD_TYPE=... -DCXX_COMPILER=... -DC_COMPILER=... [-DLAUNCHER=ccache]
+#   [-DPYTHON=<interpreter>: the installed Python package is imported too]
 cmake_minimum_required(VERSION 3.16)
 
 foreach(var BUILD_DIR CONSUMER_DIR WORK_DIR GENERATOR CXX_COMPILER C_COMPILER API_EXAMPLE DEPTH_DIR)
@@ -61,6 +62,17 @@ foreach(f robots/embedded_models.hpp robots/triangle_tree.hpp perception/point_i
     message(FATAL_ERROR "package_test: the internal header ${f} is installed")
   endif()
 endforeach()
+
+# 2b. The Python package, when it was built (-DPYTHON=<its interpreter>): imported from the prefix
+# alone, outside the source and build trees (newlines, not semicolons: CMake splits on those).
+if(PYTHON)
+  run_checked("import claspplan from the prefix" python_log "${CMAKE_COMMAND}" -E env
+              "PYTHONPATH=${prefix}/lib/python3/dist-packages" "${PYTHON}" -c
+              "import claspplan\nassert claspplan.__file__.startswith('${prefix}')\nprint(claspplan.Robot('kr5_sdh').dof)")
+  if(NOT python_log MATCHES "^12")
+    message(FATAL_ERROR "package_test: the installed Python package printed '${python_log}'")
+  endif()
+endif()
 
 # 3. Every installed header's project includes ("folder/name.hpp") are installed too.
 file(GLOB_RECURSE headers RELATIVE "${prefix}/include/claspplan" "${prefix}/include/claspplan/*.hpp")
