@@ -202,9 +202,9 @@ py::dict object_dict(const perception::ObjectModel& m) {
   return out;
 }
 
-// Ctrl-C during a search: the planner polls this (tsrrt::ClaspRequest::stop) on the calling
-// thread; at most every 50 ms it takes the GIL and lets Python run its signal handlers. When one
-// raised (KeyboardInterrupt), the search ends and the call rethrows it.
+// Ctrl-C during a long call: perception, the search and the secure-clasp checks poll this (their
+// `stop`) on the calling thread; at most every 50 ms it takes the GIL and lets Python run its
+// signal handlers. When one raised (KeyboardInterrupt), the call ends and rethrows it.
 class Interrupt {
  public:
   std::function<bool()> poll() {
