@@ -65,6 +65,8 @@ Tree read_tree(const DraftOptions& o) {
   t.arm = parse_urdf(read_text_file(o.urdf, "URDF file"), o.urdf.string());
   if (!o.replaces.empty() && o.hand_urdf.empty())
     throw InputError("--replaces leaves the arm's gripper out for --hand-urdf's hand: give both");
+  if (!o.hand_urdf_root.empty() && o.hand_urdf.empty())
+    throw InputError("--hand-urdf-root takes the hand from --hand-urdf's URDF: give both");
   t.joints = read_urdf_tree(*t.arm, o.urdf.string(), t.m, o.replaces);
   if (!o.hand_urdf.empty()) {
     if (o.mount.empty()) throw InputError("--hand-urdf needs --mount LINK (the arm link it is on)");
