@@ -53,6 +53,7 @@ struct ShapeReader {
   std::vector<std::string>& warnings;
   std::vector<std::string> left_out;  // links whose subtrees are not read (an arm's own gripper)
   std::map<std::string, std::shared_ptr<const TriangleMesh>> meshes;  // by path and scale
+  std::string cut_root;  // a subtree's root: the joint above it (of any type) is not read
 
   void skip(const urdf::Link& link, const std::string& what) {
     warnings.push_back(urdf_file + ": link '" + link.name + "': " + what +
@@ -180,7 +181,7 @@ void add_subtree(const urdf::Link& l, int parent, ShapeReader& reader, RobotMode
   Link link;
   link.name = l.name;
   link.parent = parent;
-  if (l.parent_joint) {
+  if (l.parent_joint && l.name != reader.cut_root) {
     const urdf::Joint& j = *l.parent_joint;
     link.joint = j.name;
     link.origin = to_isometry(j.parent_to_joint_origin_transform);
@@ -252,7 +253,7 @@ UrdfJoints read_urdf_tree(const urdf::ModelInterface& urdf, const std::string& u
   for (const std::string& link : left_out)
     if (!urdf.getLink(link) || link == urdf_root->name)
       fail(urdf_file, "hand_urdf.replaces: '" + link + "' is not a link below the URDF's root");
-  ShapeReader reader{urdf_file, m.warnings, left_out, {}};
+  ShapeReader reader{urdf_file, m.warnings, left_out, {}, {}};
   add_subtree(*urdf_root, -1, reader, m, joints);
   for (size_t i = 1; i < m.links.size(); ++i)
     joints.link_by_joint[m.links[i].joint] = static_cast<int>(i);
@@ -268,12 +269,10 @@ void attach_urdf_tree(const urdf::ModelInterface& urdf, const std::string& urdf_
                         ? std::string("the URDF has no root link")
                         : "the hand's root link '" + root_link + "' is not in the URDF");
   const int first = static_cast<int>(m.links.size());
-  ShapeReader reader{urdf_file, m.warnings, {}, {}};
+  ShapeReader reader{urdf_file, m.warnings, {}, {}, root->name};
   add_subtree(*root, parent, reader, m, joints);
   m.links[first].origin = origin;
   m.links[first].joint = m.links[parent].name + "_to_" + root->name;  // the mount, fixed
-  m.links[first].type = JointType::kFixed;  // a subtree's root: not the joint above it
-  joints.joint_of_link.erase(root->name);
   std::map<std::string, int> names;
   for (std::size_t i = 0; i < m.links.size(); ++i)
     if (!names.emplace(m.links[i].name, static_cast<int>(i)).second)
