@@ -20,20 +20,16 @@ struct DescribeOptions {
   bool json = false;
 };
 
+// A flag of three numbers (CLI11 checks the count) as a vector: finite, or exit 2.
+Eigen::Vector3d finite_vector3(const std::vector<double>& v, const std::string& flag) {
+  for (double x : v)
+    if (!std::isfinite(x)) throw InputError(flag + ": values must be finite");
+  return {v[0], v[1], v[2]};
+}
+
 int run_describe(DescribeOptions o) {
-  for (double v : o.mount_xyz)
-    if (!std::isfinite(v)) throw InputError("--mount-xyz: values must be finite");
-  for (double v : o.mount_rpy)
-    if (!std::isfinite(v)) throw InputError("--mount-rpy: values must be finite");
-  if (!o.mount_xyz.empty()) {
-    if (o.mount_xyz.size() != 3) throw InputError("--mount-xyz: expected x,y,z in metres");
-    o.draft.mount_xyz = {o.mount_xyz[0], o.mount_xyz[1], o.mount_xyz[2]};
-  }
-  if (!o.mount_rpy.empty()) {
-    if (o.mount_rpy.size() != 3)
-      throw InputError("--mount-rpy: expected roll,pitch,yaw in radians");
-    o.draft.mount_rpy = {o.mount_rpy[0], o.mount_rpy[1], o.mount_rpy[2]};
-  }
+  if (!o.mount_xyz.empty()) o.draft.mount_xyz = finite_vector3(o.mount_xyz, "--mount-xyz");
+  if (!o.mount_rpy.empty()) o.draft.mount_rpy = finite_vector3(o.mount_rpy, "--mount-rpy");
   progress("drafting the description of " + o.draft.urdf.string() + " (sampling " +
            std::to_string(o.draft.samples) + " configurations for the allowed pairs) ...");
   const robots::DescriptionDraft d = robots::draft_description(o.draft);

@@ -116,7 +116,7 @@ CurvePoint tip_point(const RobotModel& m, const RobotData& data, const FingerDra
     const Eigen::AlignedBox3d box = shape_bounds(shape);
     for (int c = 0; c < 8; ++c) {
       const Eigen::Vector3d corner = box.corner(static_cast<Eigen::AlignedBox3d::CornerType>(c));
-      reach = std::max(reach, (pose * (shape.origin * corner) - pose.translation()).dot(u));
+      reach = std::max(reach, (pose.linear() * (shape.origin * corner)).dot(u));
     }
   }
   return {f.links.back(), pose.linear().transpose() * (reach * u), reach > 1e-4};

@@ -3,7 +3,9 @@
 // Python terms. Long calls release the GIL; malformed input raises claspplan.InputError (a
 // ValueError) with the one-line reason the command line prints.
 #include <chrono>
+#include <functional>
 #include <memory>
+#include <utility>
 
 #include <pybind11/eigen.h>
 #include <pybind11/numpy.h>
@@ -231,6 +233,24 @@ class Interrupt {
   std::shared_ptr<State> state_ = std::make_shared<State>();
 };
 
+// Runs call(stop) without the GIL, `stop` answering Ctrl-C; after a Ctrl-C (perception's Stopped
+// included) the call's KeyboardInterrupt is raised.
+template <typename Call>
+auto interruptible(Call&& call) {
+  Interrupt interrupt;
+  decltype(call(interrupt.poll())) out{};
+  bool stopped = false;
+  try {
+    py::gil_scoped_release release;
+    out = call(interrupt.poll());
+  } catch (const Stopped&) {
+    stopped = true;
+  }
+  interrupt.rethrow();
+  if (stopped) throw Stopped();  // a stop the interpreter did not ask for: an internal failure
+  return out;
+}
+
 struct PlanArgs {
   PerceiveArgs object;  // its robot stays empty: the planner sizes the loops for the robot itself
   Eigen::VectorXd start;
@@ -277,15 +297,10 @@ py::dict plan(const Robot& robot, const PlanArgs& a) {
   r.seed = a.object.seed;
   r.max_cycles = a.max_cycles;
   r.time_limit = a.time_limit;
-  Interrupt interrupt;
-  r.stop = interrupt.poll();
-  tsrrt::ClaspResult result;
-  try {
-    py::gil_scoped_release release;
-    result = tsrrt::plan_clasp(r);
-  } catch (const Stopped&) {  // in perception: the KeyboardInterrupt is raised below
-  }
-  interrupt.rethrow();
+  const tsrrt::ClaspResult result = interruptible([&](std::function<bool()> stop) {
+    r.stop = std::move(stop);
+    return tsrrt::plan_clasp(r);
+  });
   py::dict out;
   out["status"] = status_name(result.status);
   out["verified"] = result.verified;
@@ -331,15 +346,10 @@ std::pair<int, std::string> run_file(const std::string& path, std::optional<std:
   o.pictures = pictures;
   o.controller_only = controller_only;
   o.quiet = true;
-  Interrupt interrupt;
-  o.stop = interrupt.poll();
-  cli::RunOutcome r;
-  try {
-    py::gil_scoped_release release;
-    r = cli::run_scenario(s, o);
-  } catch (const Stopped&) {  // in perception: the KeyboardInterrupt is raised below
-  }
-  interrupt.rethrow();
+  const cli::RunOutcome r = interruptible([&](std::function<bool()> stop) {
+    o.stop = std::move(stop);
+    return cli::run_scenario(s, o);
+  });
   return {r.exit_code, r.summary.dump()};
 }
 
@@ -418,16 +428,10 @@ PYBIND11_MODULE(_claspplan, m) {
         PerceiveArgs a = object_args(depth, clouds, crop, points, d, seed, no_reading_is_free);
         a.robot = robot;
         perception::PerceptionOptions options = options_of(a);
-        Interrupt interrupt;
-        options.stop = interrupt.poll();
-        perception::ObjectModel model;
-        try {
-          py::gil_scoped_release release;
-          model = perception::build_object_model(inputs_of(a), options);
-        } catch (const Stopped&) {
-        }
-        interrupt.rethrow();
-        return object_dict(model);
+        return object_dict(interruptible([&](std::function<bool()> stop) {
+          options.stop = std::move(stop);
+          return perception::build_object_model(inputs_of(a), options);
+        }));
       },
       py::arg("depth"), py::arg("clouds"), py::arg("robot"), py::arg("crop"), py::arg("points"),
       py::arg("d"), py::arg("seed"), py::arg("no_reading_is_free"));
@@ -492,15 +496,11 @@ PYBIND11_MODULE(_claspplan, m) {
         } else if (r.seed) {
           check.seed = *r.seed;
         }
-        Interrupt interrupt;
-        check.stop = interrupt.poll();
-        tsrrt::SecureClaspReport v;
-        {
-          py::gil_scoped_release release;
-          v = tsrrt::check_secure_clasp(r.model, r.object_vertices, r.object_triangles, r.final_q,
-                                        r.loop, check);
-        }
-        interrupt.rethrow();
+        const tsrrt::SecureClaspReport v = interruptible([&](std::function<bool()> stop) {
+          check.stop = std::move(stop);
+          return tsrrt::check_secure_clasp(r.model, r.object_vertices, r.object_triangles,
+                                           r.final_q, r.loop, check);
+        });
         return cli::verification_json(v).dump();
       },
       py::arg("path"), py::arg("seed"));
