@@ -114,6 +114,20 @@ int find_hand_root(const Tree& t, const DraftOptions& o) {
   }
 }
 
+// The first links of the fingers below `link`, one per moving branch. A branch that splits again
+// into moving branches (SVH's ring and little fingers on a plate that turns with the thumb) gives
+// one finger per branch below the split; the links before it are part of the palm.
+void finger_starts(const Tree& t, int link, std::vector<int>& out) {
+  for (int branch : moving_branches(t, link)) {
+    int l = branch;
+    while (moving_branches(t, l).size() == 1) l = moving_branches(t, l)[0];
+    if (moving_branches(t, l).size() >= 2)
+      finger_starts(t, l, out);
+    else
+      out.push_back(branch);
+  }
+}
+
 // A finger: from a branch of the hand's root down to a leaf, following the branch with the most
 // moving joints (then the first), so that a fixed fingertip link ends it.
 std::vector<int> finger_chain(const Tree& t, int first) {
@@ -197,7 +211,9 @@ Draft topology(const Tree& t, const DraftOptions& o, int root) {
     if (t.actuated(l)) d.hand.push_back(joint_draft(t, l));
     stack.insert(stack.end(), t.children[l].rbegin(), t.children[l].rend());
   }
-  for (int branch : moving_branches(t, root)) {
+  std::vector<int> starts;
+  finger_starts(t, root, starts);
+  for (int branch : starts) {
     FingerDraft f;
     f.chain = finger_chain(t, branch);
     for (int l : f.chain) {  // a coupled finger's joints are the ones its mimics follow

@@ -67,7 +67,10 @@ std::optional<fs::path> in_package_folder(const fs::path& dir, const std::string
 }
 
 std::string package_path(const std::string& uri, const std::string& urdf_file) {
-  const std::string body = uri.substr(std::string("package://").size());
+  // Some public URDFs write package:///PACKAGE/PATH (Talos' in example-robot-data); the extra
+  // slash names no package, so it is skipped.
+  std::string body = uri.substr(std::string("package://").size());
+  body.erase(0, std::min(body.find_first_not_of('/'), body.size()));
   const std::size_t slash = body.find('/');
   if (slash == std::string::npos || slash == 0 || slash + 1 == body.size())
     throw InputError("mesh '" + uri + "': expected package://PACKAGE/PATH");

@@ -25,6 +25,7 @@ struct Finger {
   double x, y;         // base on the palm's top face (palm frame)
   int flex_sign = 1;   // +1: flexes toward +x
   bool mimic = false;  // the distal joint mimics the proximal one
+  std::string parent = "palm";
 };
 
 std::string cylinder(const std::string& link, double length, double radius = 0.008) {
@@ -49,7 +50,7 @@ std::string finger(const Finger& f) {
   const std::string base = std::to_string(f.x) + " " + std::to_string(f.y) + " 0";
   std::string u = cylinder(f.name + "_proximal", 0.05) + cylinder(f.name + "_distal", 0.04) +
                   "<link name=\"" + f.name + "_tip\"/>\n";
-  u += joint(f.name + "_1", "revolute", "palm", f.name + "_proximal", base, axis, kFlexLimits);
+  u += joint(f.name + "_1", "revolute", f.parent, f.name + "_proximal", base, axis, kFlexLimits);
   u += joint(f.name + "_2", "revolute", f.name + "_proximal", f.name + "_distal", "0 0 0.05", axis,
              kFlexLimits + (f.mimic ? "<mimic joint=\"" + f.name + "_1\"/>" : ""));
   u += joint(f.name + "_tip_joint", "fixed", f.name + "_distal", f.name + "_tip", "0 0 0.04",
@@ -200,6 +201,27 @@ TEST(DescriptionDraft, MimicJointsFollowTheirLeaderAndAreNotInQ) {
       EXPECT_EQ(f.joints.size(), 1u);
     }
   }
+}
+
+// Two fingers on a plate that turns with the thumb (SVH's ring and little fingers): each is a
+// finger of its own, and the plate, where their branches split, belongs to the palm.
+TEST(DescriptionDraft, FingersOnAMovingPlateAreFingersOfTheirOwn) {
+  Folder dir;
+  std::vector<Finger> fingers = three_fingers();
+  fingers[0].parent = fingers[1].parent = "plate";
+  std::string urdf = robot_urdf(fingers);
+  urdf.insert(urdf.rfind("</robot>"),
+              cylinder("plate", 0.005, 0.03) +
+                  joint("plate_joint", "revolute", "palm", "plate", "0 0 0", "1 0 0",
+                        "<limit lower=\"0\" upper=\"0.1\" effort=\"1\" velocity=\"1\"/>"
+                        "<mimic joint=\"c_1\" multiplier=\"0.05\"/>"));
+  const RobotModel m = draft(dir, urdf).model;
+  ASSERT_EQ(m.fingers.size(), 3u);
+  for (const auto& f : m.fingers) {
+    EXPECT_NE(m.links[f.links.front()].name, "plate") << f.name;
+    EXPECT_EQ(f.thumb, m.links[f.links.front()].name.rfind("c_", 0) == 0) << f.name;
+  }
+  EXPECT_GT(hand_size(m).closed_aperture, 0.01);
 }
 
 TEST(DescriptionDraft, ANamedThumbAndTwoFingersThatFaceEachOther) {

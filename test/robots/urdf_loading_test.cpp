@@ -237,6 +237,11 @@ TEST(UrdfLoading, PackageUrisAreFoundThroughTheSearchPath) {
   const Eigen::AlignedBox3d b = shape_bounds(palm_shape(beside));
   EXPECT_NEAR(b.sizes().x(), 0.113, 1e-6) << "the file's unit (mm) and the URDF's scale";
   EXPECT_NEAR(b.sizes().z(), 2 * 0.077, 1e-6) << "Z up as written, not turned to Y up";
+  // package:///PACKAGE/PATH, as Talos' URDF writes it, names the same file.
+  const RobotModel triple = load_robot(dir.robot(
+      "<mesh filename=\"package:///sdh_description/meshes/palm.dae\" scale=\"0.113 0.122 0.077\"/>",
+      "sdh_description/urdf"));
+  EXPECT_NEAR(shape_bounds(palm_shape(triple)).sizes().x(), 0.113, 1e-6);
 
   write_obj(unit_cube(), dir.path("ws/src/hands/sdh_meshes/collision/palm.obj"));
   const std::string yaml = dir.robot(

@@ -26,3 +26,14 @@ out=examples/robots/drafted
   --hand-urdf $robots/romeo_description/urdf/romeo.urdf --hand-urdf-root l_wrist \
   --mount panda_link8 --mount-rpy 0,-1.5707963,0 --replaces panda_hand \
   --home=0,-0.785398,0,-2.356194,0,1.570796,0.785398 -o $out/panda_romeo.yaml
+# SCHUNK's SVH hand (9 motors, 11 joints that <mimic> them, mesh and box collisions) is fetched,
+# not shipped (GPL-3.0): sh examples/robots/fetch_svh.sh. Its fingers already point along the
+# base's z, so it is mounted as it is.
+svh=examples/robots/fetched/schunk_svh/schunk_svh_hand_right.urdf
+if [ -f $svh ]; then
+  "$claspplan" describe $robots/panda_description/urdf/panda.urdf --name panda_svh \
+    --hand-urdf $svh --mount panda_link8 --replaces panda_hand \
+    --home=0,-0.785398,0,-2.356194,0,1.570796,0.785398 -o $out/panda_svh.yaml
+else
+  echo "draft.sh: panda_svh skipped: run sh examples/robots/fetch_svh.sh first" >&2
+fi
