@@ -3,6 +3,7 @@
 // Python terms. Long calls release the GIL; malformed input raises claspplan.InputError (a
 // ValueError) with the one-line reason the command line prints.
 #include <chrono>
+#include <cmath>
 #include <functional>
 #include <memory>
 #include <utility>
@@ -184,6 +185,15 @@ py::dict object_dict(const perception::ObjectModel& m) {
     d["reason"] = l.reason;
     d["length"] = l.length;
     d["hole_width"] = l.hole_width;
+    // As in `loops --json`: None where no bar was measured (a wall or body along the loop).
+    const auto finite_or_none = [](double v) {
+      return std::isfinite(v) ? py::object(py::float_(v)) : py::object(py::none());
+    };
+    d["bar_thickness"] = finite_or_none(l.bar_thickness);
+    d["fit"] = l.fit;
+    py::list profile;
+    for (double b : l.bar_profile) profile.append(finite_or_none(b));
+    d["bar_profile"] = profile;
     d["centre"] = Eigen::Vector3d(l.centre);
     d["normal"] = Eigen::Vector3d(l.normal);
     loops.append(d);

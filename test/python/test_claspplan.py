@@ -96,6 +96,14 @@ def test_perceive_depth_arrays_as_the_command_line_does():
     assert mine["beta1"] == theirs["beta1"]
     assert mine["d"] == pytest.approx(theirs["d"], rel=1e-12)
     assert [l["verdict"] for l in mine["loops"]] == [l["verdict"] for l in theirs["loops"]]
+    # Every loop field of the command line's JSON, with the same values.
+    for l_mine, l_theirs in zip(mine["loops"], theirs["loops"]):
+        assert set(l_mine) == set(l_theirs)
+        for key in ("hole_width", "fit", "length"):
+            assert l_mine[key] == pytest.approx(l_theirs[key], rel=1e-12)
+        assert (l_mine["bar_thickness"] is None) == (l_theirs["bar_thickness"] is None)
+        assert [b is None for b in l_mine["bar_profile"]] == \
+            [b is None for b in l_theirs["bar_profile"]]
     assert mine["loops"][0]["claspable"]
     assert mine["targets"].shape[1] == 3 and len(mine["targets"]) > 0
 
