@@ -98,20 +98,25 @@ std::vector<int> moving_branches(const Tree& t, int link) {
   return out;
 }
 
+// Down from `link` along single moving branches: the first link with none or several.
+int first_split(const Tree& t, int link) {
+  for (std::vector<int> below = moving_branches(t, link); below.size() == 1;
+       below = moving_branches(t, link))
+    link = below[0];
+  return link;
+}
+
 int find_hand_root(const Tree& t, const DraftOptions& o) {
   if (!o.hand_root.empty()) return t.link(o.hand_root, "--hand-root");
   // A mounted hand's fingers are below its own root, whatever else the arm carries.
   const std::string mounted =
       o.hand_urdf_root.empty() && t.hand ? t.hand->getRoot()->name : o.hand_urdf_root;
-  for (int link = t.hand ? t.m.link_index(mounted) : 0;;) {
-    const std::vector<int> branches = moving_branches(t, link);
-    if (branches.size() >= 2) return link;
-    if (branches.empty())
-      throw InputError(
-          "no hand found: no link has two or more branches with moving joints (a hand's "
-          "fingers); name the hand's root link with --hand-root");
-    link = branches[0];
-  }
+  const int root = first_split(t, t.hand ? t.m.link_index(mounted) : 0);
+  if (moving_branches(t, root).empty())
+    throw InputError(
+        "no hand found: no link has two or more branches with moving joints (a hand's "
+        "fingers); name the hand's root link with --hand-root");
+  return root;
 }
 
 // The first links of the fingers below `link`, one per moving branch. A branch that splits again
@@ -119,12 +124,11 @@ int find_hand_root(const Tree& t, const DraftOptions& o) {
 // one finger per branch below the split; the links before it are part of the palm.
 void finger_starts(const Tree& t, int link, std::vector<int>& out) {
   for (int branch : moving_branches(t, link)) {
-    int l = branch;
-    while (moving_branches(t, l).size() == 1) l = moving_branches(t, l)[0];
-    if (moving_branches(t, l).size() >= 2)
-      finger_starts(t, l, out);
-    else
+    const int split = first_split(t, branch);
+    if (moving_branches(t, split).empty())
       out.push_back(branch);
+    else
+      finger_starts(t, split, out);
   }
 }
 

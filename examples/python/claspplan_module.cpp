@@ -175,6 +175,10 @@ perception::PerceptionOptions options_of(const PerceiveArgs& a) {
 }
 
 py::dict object_dict(const perception::ObjectModel& m) {
+  // As in `loops --json`: None where no bar was measured (a wall or body along the loop).
+  const auto finite_or_none = [](double v) {
+    return std::isfinite(v) ? py::object(py::float_(v)) : py::object(py::none());
+  };
   py::list loops;
   for (const auto& l : m.loops) {
     py::dict d;
@@ -185,10 +189,6 @@ py::dict object_dict(const perception::ObjectModel& m) {
     d["reason"] = l.reason;
     d["length"] = l.length;
     d["hole_width"] = l.hole_width;
-    // As in `loops --json`: None where no bar was measured (a wall or body along the loop).
-    const auto finite_or_none = [](double v) {
-      return std::isfinite(v) ? py::object(py::float_(v)) : py::object(py::none());
-    };
     d["bar_thickness"] = finite_or_none(l.bar_thickness);
     d["fit"] = l.fit;
     py::list profile;
