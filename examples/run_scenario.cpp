@@ -81,11 +81,21 @@ json controller_json(const tsrrt::ClaspResult& r, json& result, json& timing) {
   result["collided"] = st.collided;
   result["target"] = r.motion.target;
   result["linking_history"] = st.linking_history;
-  return {{"success", r.succeeded()},
-          {"reason", r.reason},
-          {"steps", st.control_steps},
-          {"collided", st.collided},
-          {"seconds", timing["controller"]}};
+  json summary = {{"success", r.succeeded()},
+                  {"reason", r.reason},
+                  {"steps", st.control_steps},
+                  {"collided", st.collided},
+                  {"seconds", timing["controller"]}};
+  // The fingers touched the object in the goal region and were closed there, as the planner
+  // closes its goal nodes: the clasp was checked (tsrrt::run_controller_only).
+  if (st.clasp_candidates > 0) {
+    timing["closing"] = r.timings.closing;
+    timing["verification"] = r.timings.verification;
+    if (st.clasp_candidates > st.clasp_candidates_screened)
+      result["verification"] = verification_json(r.verification);
+    summary["verified"] = result["verified"] = r.verified;
+  }
+  return summary;
 }
 
 // The planned phase's part (TS-RRT, closing, verification, pruning), with the tree picture.

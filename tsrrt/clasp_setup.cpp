@@ -30,20 +30,54 @@ void fit_sample_box(PlannerParameters& p, const perception::ObjectModel& object,
   p.sample_max = box.max() + Eigen::Vector3d::Constant(0.3);
 }
 
-// The clasp controller alone toward the nearest clasp target.
-void run_controller_only(const ClaspRequest& request, servo::ClaspController& controller,
-                         robots::CollisionWorld& world, double goal_linking, ClaspResult& r) {
+// The clasp controller alone toward the nearest clasp target. A run that the object stops
+// inside the tree's goal region (eq. 4 mean at least the goal tolerance, ClaspProblem::reached)
+// ends as the planner's goal nodes do: the fingers closed to contact and the clasp verified. A
+// hand whose thumb sweeps wider than the bar (the Allegro's) touches it before the hand's goal.
+void run_controller_only(const ClaspRequest& request, const ClaspScene& scene, const Say& say,
+                         ClaspResult& r) {
   const auto t = Clock::now();
-  servo::ControllerRun run =
-      servo::run_controller(controller, world, r.start, goal_linking, request.controller_run);
+  servo::ControllerRun run = servo::run_controller(scene.controller, scene.world, r.start,
+                                                   scene.goal_linking, request.controller_run);
   r.timings.controller = since(t);
   r.statistics.control_steps = static_cast<int>(run.waypoints.size()) - 1;
   r.statistics.collided = run.collided;
   r.statistics.linking_history = std::move(run.linking_history);
   r.motion.target = run.target;
   r.motion.waypoints = std::move(run.waypoints);
-  if (run.success) r.status = ClaspStatus::kSuccess;
   r.reason = run.reason;
+  if (run.success) {
+    r.status = ClaspStatus::kSuccess;
+    return;
+  }
+  const double tolerance = closable_tolerance(scene.planning, scene.goal_linking);
+  const bool touched_object =
+      run.collided && run.collision.second == "object" && r.statistics.control_steps > 0;
+  if (!touched_object || run.final_state.linking < tolerance) return;
+  char line[200];
+  std::snprintf(line, sizeof line,
+                "  the fingers touched the object at virtual linking %.3f (goal region from %.2f): "
+                "closing them to contact and verifying ...",
+                run.final_state.linking, tolerance);
+  say(line);
+  const ClaspCandidate c = close_and_check(scene, r.motion.waypoints.back(), r.timings, true);
+  r.statistics.clasp_candidates = 1;
+  r.statistics.clasp_candidates_screened = c.refused ? 1 : 0;
+  if (c.refused) {
+    r.reason += "; the hand closed there reaches virtual linking " +
+                std::to_string(c.closed_linking) + " only";
+    return;
+  }
+  for (const auto& q : c.approach) r.motion.waypoints.push_back(q);
+  r.motion.waypoints.push_back(c.q_closed);
+  r.verification = c.check;
+  r.verified = c.check.secure;
+  if (c.check.secure) {
+    r.status = ClaspStatus::kSuccess;
+    r.reason = "verified clasp: the fingers touched the object in the goal region and closed";
+  } else {
+    r.reason += "; closed there: " + insecure_reason(c.check);
+  }
 }
 
 // TS-RRT with every goal node closed and verified at once (paper Sec. IV-D, V-A); with
@@ -302,20 +336,19 @@ ClaspResult plan_clasp(const ClaspRequest& request) {
 
   servo::ClaspController controller(model, loop.points, r.targets, request.controller);
   const double goal_linking = request.goal_linking.value_or(model.vlink_goal);
+  // The time limit bounds the search and every clasp check made in it.
+  const auto t0 = Clock::now();
+  if (planning.planner.time_limit > 0.0) {
+    planning.secure.deadline = t0 + std::chrono::duration_cast<Clock::duration>(
+                                        std::chrono::duration<double>(planning.planner.time_limit));
+  }
+  SecureClaspChecker checker(model, r.collision_mesh.vertices, r.collision_mesh.triangles,
+                             planning.secure);
+  const ClaspScene scene{model, world, controller, checker, loop, goal_linking, planning};
   if (request.mode == ClaspMode::kControllerOnly) {
     say("running the controller alone toward the nearest clasp target ...");
-    run_controller_only(request, controller, world, goal_linking, r);
+    run_controller_only(request, scene, say, r);
   } else {
-    // The time limit bounds the search and every clasp check made in it.
-    const auto t0 = Clock::now();
-    if (planning.planner.time_limit > 0.0) {
-      planning.secure.deadline =
-          t0 + std::chrono::duration_cast<Clock::duration>(
-                   std::chrono::duration<double>(planning.planner.time_limit));
-    }
-    SecureClaspChecker checker(model, r.collision_mesh.vertices, r.collision_mesh.triangles,
-                               planning.secure);
-    const ClaspScene scene{model, world, controller, checker, loop, goal_linking, planning};
     if (request.search) {
       request.search(scene, r);
     } else {

@@ -44,8 +44,10 @@ struct EnvironmentBox {
 };
 
 enum class ClaspMode {
-  kPlan,            ///< TS-RRT, fingers closed and the clasp verified at every goal node
-  kControllerOnly,  ///< the clasp controller alone toward the nearest clasp target, no search
+  kPlan,  ///< TS-RRT, fingers closed and the clasp verified at every goal node
+  /// The clasp controller alone toward the nearest clasp target, no search; when the fingers
+  /// touch the object inside the tree's goal region, they are closed and the clasp verified.
+  kControllerOnly,
 };
 
 struct ClaspResult;
@@ -100,7 +102,7 @@ struct ClaspRequest {
 };
 
 enum class ClaspStatus {
-  kSuccess,          ///< a verified clasp (kControllerOnly: the virtual-linking goal reached)
+  kSuccess,  ///< a verified clasp (kControllerOnly: the linking goal reached, or a verified clasp)
   kNoClaspableLoop,  ///< a valid problem without an answer: no loop this hand can clasp
   kNoClasp,          ///< ... no (verified) clasp within the budget, or the controller stopped
 };
@@ -157,7 +159,7 @@ struct ClaspTimings {
 struct ClaspResult {
   /// The outcome; a search (TS-RRT or a ClaspSearch) sets kSuccess when it ends at a clasp.
   ClaspStatus status = ClaspStatus::kNoClasp;
-  bool verified = false;  ///< kPlan: the final clasp passed the secure-clasp check
+  bool verified = false;  ///< the final clasp passed the secure-clasp check
   std::string reason;     ///< one line: why it succeeded or not
 
   Eigen::VectorXd start;             ///< the completed start configuration

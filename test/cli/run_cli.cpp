@@ -114,6 +114,28 @@ TEST(ControllerOnly, ARingInFrontOfTheHandIsClaspedByEveryRobot) {
       << both.err;
 }
 
+// A touch outside the goal region ends the run: the hand's palm meets a ring set 8 cm ahead of
+// the tcp before any finger curve links it. (Inside the region the fingers are closed and the
+// clasp verified: ShippedRobots.VerifyTheRingInFrontOfTheHand.)
+TEST(ControllerOnly, ATouchBeforeTheGoalRegionStopsTheRun) {
+  TempDir dir;
+  const std::string path =
+      dir.write("near.yaml", "robot: " + std::string(CLASPPLAN_ROBOTS) +
+                                 "/drafted/ur5_allegro.yaml\n"
+                                 "object:\n"
+                                 "  shape: {type: torus, major_radius: 0.1, minor_radius: 0.01}\n"
+                                 "  in_front_of_hand: 0.08\n");
+  const CliResult r = run_cli(
+      {"run", path, "--controller-only", "--no-pictures", "--out", dir.file("out"), "--json"});
+  EXPECT_EQ(r.exit_code, 1) << r.out << r.err;
+  const json s = r.json();
+  EXPECT_TRUE(s["collided"].get<bool>());
+  EXPECT_FALSE(s.contains("verified"));
+  EXPECT_NE(s["reason"].get<std::string>().find("palm_link with object"), std::string::npos)
+      << s["reason"];
+  EXPECT_LT(read_json(dir.file("out/result.json"))["linking_history"].back().get<double>(), 0.65);
+}
+
 TEST(ControllerOnly, UnreachableTargetEndsWithNoProgress) {
   TempDir dir;
   const auto path = write_ring_scenario(dir, "far.yaml", "2.5, 0, 0.3");
