@@ -12,8 +12,28 @@ Eigen::VectorXd close_fingers(const robots::RobotModel& model, robots::Collision
   Eigen::VectorXd q = q_start;
   robots::RobotData data(model);
   const Eigen::VectorXd lower = model.lower(), upper = model.upper();
-  const auto blocked_link = [&](const robots::Finger& finger) {
-    for (int link : finger.links) {
+  // The links a finger's closing checks: its own, and any other that its closing joints move
+  // through mimic joints (a one-motor hand's other fingers, a plate the thumb turns).
+  std::vector<std::vector<int>> moved;
+  for (const robots::Finger& finger : model.fingers) {
+    std::vector<int> closing;
+    for (int j : finger.joints)
+      if (model.joints[j].closing != 0.0) closing.push_back(j);
+    std::vector<int>& links = moved.emplace_back(finger.links);
+    for (int link = 0; link < static_cast<int>(model.links.size()); ++link) {
+      if (model.links[link].shapes.empty() ||
+          std::find(links.begin(), links.end(), link) != links.end())
+        continue;
+      for (int s : model.links[link].support) {
+        if (std::find(closing.begin(), closing.end(), model.links[s].q_index) != closing.end()) {
+          links.push_back(link);
+          break;
+        }
+      }
+    }
+  }
+  const auto blocked_link = [&](std::size_t finger) {
+    for (int link : moved[finger]) {
       if (world.link_near_object(data, link, o.clearance) ||
           world.link_in_collision(data, link, nullptr, /*include_self=*/true))
         return link;
@@ -38,7 +58,7 @@ Eigen::VectorXd close_fingers(const robots::RobotModel& model, robots::Collision
         trial = trial.cwiseMax(lower).cwiseMin(upper);
         if (trial == q) break;  // no active joint, or all at their limits
         robots::forward_kinematics(model, trial, data);
-        const int link = blocked_link(finger);
+        const int link = blocked_link(f);
         if (link < 0) {
           q = trial;
           any = true;

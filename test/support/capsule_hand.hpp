@@ -50,19 +50,23 @@ inline std::string finger(const std::string& name, int side) {
          "_tip\"/><origin xyz=\"0 0 " + std::to_string(kDistal) + "\"/></joint>";
 }
 
+// The hand's URDF: the lift, the palm, finger("finger", 1) and the thumb given (its URDF text).
 // With `pointing_down`, base_link is turned half a turn about x: the fingers and v_fwd point to
 // world -z (as a hand reaching into a container from above), x stays x.
+inline std::string capsule_hand_urdf(const std::string& thumb, bool pointing_down = false) {
+  return "<robot name=\"capsule_hand\"><link name=\"base_link\"/><link name=\"tool0\"/>"
+         "<joint name=\"lift\" type=\"prismatic\"><parent link=\"base_link\"/><child "
+         "link=\"tool0\"/>" +
+         std::string(pointing_down ? "<origin rpy=\"3.141592653589793 0 0\"/>" : "") +
+         "<axis xyz=\"0 0 1\"/><limit lower=\"-0.5\" upper=\"0.5\" effort=\"1\" "
+         "velocity=\"1\"/></joint><link name=\"palm\"><collision><geometry><box size=\"0.08 "
+         "0.03 0.02\"/></geometry></collision></link><joint name=\"palm_joint\" "
+         "type=\"fixed\"><parent link=\"tool0\"/><child link=\"palm\"/></joint>" +
+         finger("finger", 1) + thumb + "</robot>";
+}
+
 inline robots::RobotModel capsule_hand(bool pointing_down = false) {
-  const std::string urdf =
-      "<robot name=\"capsule_hand\"><link name=\"base_link\"/><link name=\"tool0\"/>"
-      "<joint name=\"lift\" type=\"prismatic\"><parent link=\"base_link\"/><child "
-      "link=\"tool0\"/>" +
-      std::string(pointing_down ? "<origin rpy=\"3.141592653589793 0 0\"/>" : "") +
-      "<axis xyz=\"0 0 1\"/><limit lower=\"-0.5\" upper=\"0.5\" effort=\"1\" "
-      "velocity=\"1\"/></joint><link name=\"palm\"><collision><geometry><box size=\"0.08 0.03 "
-      "0.02\"/></geometry></collision></link><joint name=\"palm_joint\" type=\"fixed\"><parent "
-      "link=\"tool0\"/><child link=\"palm\"/></joint>" +
-      finger("finger", 1) + finger("thumb", -1) + "</robot>";
+  const std::string urdf = capsule_hand_urdf(finger("thumb", -1), pointing_down);
   const std::string yaml = R"(name: capsule_hand
 urdf: capsule_hand.urdf
 arm: {joints: [lift], home: [0], tool_link: tool0}

@@ -1,14 +1,30 @@
-// Finger closing on geometry built here: a finger whose base link meets an obstacle curls its tip.
+// Finger closing on geometry built here: a finger whose base link meets an obstacle curls its tip;
+// a motor that moves two fingers stops for either.
+#include <string>
+
 #include <gtest/gtest.h>
 
 #include "robots/collision_world.hpp"
 #include "robots/kinematics.hpp"
 #include "robots/robot_model.hpp"
 #include "test/robots/test_meshes.hpp"
+#include "test/support/capsule_hand.hpp"
 #include "tsrrt/finger_closing.hpp"
 
 namespace claspplan::test {
 namespace {
+
+// A 6 mm cube at a link's shape (its first or last) at q.
+TriMesh cube_at(const robots::RobotModel& model, const Eigen::VectorXd& q, int link, bool last) {
+  robots::RobotData data(model);
+  robots::forward_kinematics(model, q, data);
+  const std::vector<int>& shapes = model.links[link].shapes;
+  const Eigen::Vector3d at =
+      robots::shape_pose(data, model.shapes[last ? shapes.back() : shapes.front()]).translation();
+  TriMesh cube = bar_mesh(0.004, 0.006, 4);
+  for (auto& v : cube.vertices) v += at;
+  return cube;
+}
 
 TEST(FingerClosing, ABlockedBaseLinkStopsItsJointWhileTheTipCurlsOn) {
   const robots::RobotModel model = robots::load_robot("kr5_sdh");
@@ -21,13 +37,9 @@ TEST(FingerClosing, ABlockedBaseLinkStopsItsJointWhileTheTipCurlsOn) {
   const Eigen::VectorXd q = model.home;
   Eigen::VectorXd q_bent = q;
   q_bent[base_joint] += model.joints[base_joint].closing * 0.6;
-  robots::RobotData data(model);
-  robots::forward_kinematics(model, q_bent, data);
-  const Eigen::Vector3d at =
-      robots::shape_pose(data, model.shapes[model.links[base_link].shapes.front()]).translation();
-  TriMesh cube = bar_mesh(0.004, 0.006, 4);
-  for (auto& v : cube.vertices) v += at;
+  const TriMesh cube = cube_at(model, q_bent, base_link, false);
 
+  robots::RobotData data(model);
   robots::CollisionWorld world(model);
   world.set_object(cube.vertices, cube.triangles);
   const Eigen::VectorXd closed = tsrrt::close_fingers(model, world, q, {});
@@ -38,6 +50,58 @@ TEST(FingerClosing, ABlockedBaseLinkStopsItsJointWhileTheTipCurlsOn) {
   EXPECT_LT(closed_by(base_joint), 0.6);
   EXPECT_GT(closed_by(tip_joint), closed_by(base_joint) + 0.2);
   // The closed pose keeps the clearance: no link of the hand touches the cube.
+  robots::forward_kinematics(model, closed, data);
+  EXPECT_FALSE(world.in_collision(data));
+}
+
+// The capsule hand with one motor pair: the thumb's joints mimic the finger's (as Romeo's fingers
+// all follow LHand), and both fingers list the motors. A cube in the thumb's path must stop the
+// motors when the finger steps them, not only when the thumb does.
+TEST(FingerClosing, AMotorSharedThroughMimicJointsStopsForEveryLinkItMoves) {
+  std::string thumb = finger("thumb", -1);
+  for (const char* j : {"thumb_1", "thumb_2"}) {
+    const std::size_t at = thumb.find("</joint>", thumb.find("name=\"" + std::string(j) + "\""));
+    thumb.insert(at,
+                 "<mimic joint=\"finger_" + std::string(j).substr(6) + "\" multiplier=\"-1\"/>");
+  }
+  const std::string urdf = capsule_hand_urdf(thumb);
+  const std::string yaml = R"(name: one_motor
+urdf: one_motor.urdf
+arm: {joints: [lift], home: [0], tool_link: tool0}
+hand:
+  base_link: palm
+  joints:
+    - {name: finger_1, open: 0.4, closing: -1}
+    - {name: finger_2, open: 0.0, closing: -1}
+  fingers:
+    - {name: finger, joints: [finger_1, finger_2], links: [finger_base, finger_distal]}
+    - {name: thumb, thumb: true, joints: [finger_1, finger_2], links: [thumb_base, thumb_distal]}
+  curves:
+    - name: finger-thumb
+      points: [{link: finger_tip}, {link: finger_distal}, {link: finger_base}, {link: palm},
+               {link: thumb_base}, {link: thumb_distal}, {link: thumb_tip}]
+  tcp: {link: palm, xyz: [0, 0, 0.03]}
+  v_fwd: {link: tool0, vector: [0, 0, 1]}
+  v_swd: {link: tool0, vector: [0, 1, 0]}
+  vlink_goal: 0.8
+)";
+  const robots::RobotModel model =
+      robots::load_robot_from_text(yaml, urdf, "one_motor.yaml", "one_motor.urdf");
+  const int motor = model.joint_index("finger_1");
+  const int thumb_distal = model.link_index("thumb_distal");
+
+  // A 6 mm cube where the thumb's tip would be after both motors closed 0.3 rad.
+  Eigen::VectorXd q_bent = model.home;
+  for (int j = model.arm_dof; j < model.dof(); ++j) q_bent[j] += model.joints[j].closing * 0.3;
+  const TriMesh cube = cube_at(model, q_bent, thumb_distal, true);
+  robots::RobotData data(model);
+  robots::CollisionWorld world(model);
+  world.set_object(cube.vertices, cube.triangles);
+
+  const Eigen::VectorXd closed = tsrrt::close_fingers(model, world, model.home, {});
+  const double closed_by = model.joints[motor].closing * (closed[motor] - model.home[motor]);
+  EXPECT_GT(closed_by, 0.05);
+  EXPECT_LT(closed_by, 0.3);
   robots::forward_kinematics(model, closed, data);
   EXPECT_FALSE(world.in_collision(data));
 }
