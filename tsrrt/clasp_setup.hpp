@@ -118,8 +118,10 @@ struct ClaspStatistics {
   // kPlan: the TS-RRT search.
   int cycles = 0;  ///< of Alg. 1's loop after the pre-expansion
   int nodes = 0;
-  int control_steps = 0;     ///< controller steps of the search (kControllerOnly: of the run)
-  int clasp_candidates = 0;  ///< goal nodes closed (and verified unless screened)
+  int control_steps = 0;  ///< controller steps of the search (kControllerOnly: of the run)
+  /// Goal nodes closed (and verified unless screened); kControllerOnly: 1 when the fingers touched
+  /// the object in the goal region and were closed there.
+  int clasp_candidates = 0;
   int clasp_candidates_screened = 0;  ///< closed hands refused unverified (closed_hand_links)
   /// Clasp targets dropped before the search: the closed hand there reaches into the environment
   /// at every approach (clasp_room()).

@@ -15,11 +15,12 @@ struct FingerClosingOptions {
   int max_steps = 400;
 };
 
-/// Closes each finger (the thumb included) along its joints' closing directions until its links
-/// are within the clearance of the object or its joints reach their limits; every step stays
-/// collision-free. A link that comes within the clearance (or touches the robot) stops the joints
-/// that move it, and the joints beyond it go on closing: the finger curls around what it meets.
-/// Returns the closed configuration (the path's last pose).
+/// Closes each finger (the thumb included) along its joints' closing directions until its links,
+/// or any other link its closing joints move through mimic joints, are within the clearance of the
+/// object or its joints reach their limits; every step stays collision-free. A link that comes
+/// within the clearance (or touches the robot) stops the joints that move it, and the joints beyond
+/// it go on closing: the finger curls around what it meets. Returns the closed configuration (the
+/// path's last pose).
 Eigen::VectorXd close_fingers(const robots::RobotModel& model, robots::CollisionWorld& world,
                               const Eigen::VectorXd& q, const FingerClosingOptions& options);
 
