@@ -111,6 +111,19 @@ bool fcl_collide(const fcl::CollisionGeometryd* a, const Eigen::Isometry3d& ta,
   return result.isCollision();
 }
 
+// Where a and b touch: FCL's first contact point, or the middle of their boxes' overlap when
+// FCL gives none for this pair of geometries.
+Eigen::Vector3d fcl_contact_point(const fcl::CollisionGeometryd* a, const Eigen::Isometry3d& ta,
+                                  const fcl::CollisionGeometryd* b, const Eigen::Isometry3d& tb,
+                                  const Box3& box_a, const Box3& box_b) {
+  fcl::CollisionRequestd request(1, /*enable_contact=*/true);
+  fcl::CollisionResultd result;
+  fcl::collide(a, ta, b, tb, request, result);
+  if (result.numContacts() > 0 && result.getContact(0).pos.allFinite())
+    return result.getContact(0).pos;
+  return 0.5 * (box_a.lo.cwiseMax(box_b.lo) + box_a.hi.cwiseMin(box_b.hi));
+}
+
 }  // namespace
 
 struct CollisionWorld::Impl {
@@ -254,6 +267,9 @@ struct CollisionWorld::Impl {
     const int e = shape_hits_environment(s);
     if (e >= 0) {
       report(r, link, environment[e].name);
+      if (r)
+        r->point = fcl_contact_point(shapes[s].geometry.get(), tf[s], environment[e].geometry.get(),
+                                     environment[e].pose, box[s], environment[e].box);
       return true;
     }
     if (shape_hits_object(s)) {

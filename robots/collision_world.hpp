@@ -19,6 +19,7 @@
 // A CollisionWorld keeps internal scratch state: use one per thread.
 #pragma once
 
+#include <limits>
 #include <memory>
 #include <string>
 #include <utility>
@@ -38,6 +39,9 @@ struct CollisionReport {
   std::string second;  ///< a link name, "object", "box <i>" or "cylinder <i>"
   int first_link = -1;
   int second_link = -1;  ///< -1 unless `second` is a link
+  /// Where the link met the environment (a box, a cylinder, unseen space), world frame: FCL's
+  /// contact point, or the middle of the two bounding boxes' overlap. NaN for other contacts.
+  Eigen::Vector3d point = Eigen::Vector3d::Constant(std::numeric_limits<double>::quiet_NaN());
 };
 
 /// An object's collision geometry: FCL bounding-volume trees and, for exact round shapes, a

@@ -56,7 +56,11 @@ MotionCheck ClaspProblem::check_motion(const Eigen::VectorXd& q0, const Eigen::V
   if (world_.motion_free(q0, q1, resolution_, &report)) return MotionCheck::kFree;
   if (report.second == "object") return MotionCheck::kObject;
   if (report.second_link >= 0) return MotionCheck::kSelf;
-  if (report.second == "unseen space") return MotionCheck::kUnseen;
+  if (report.second == "unseen space") {
+    if (unseen_contacts_.size() < kMaxContacts && report.point.allFinite())
+      unseen_contacts_.push_back(report.point);
+    return MotionCheck::kUnseen;
+  }
   return MotionCheck::kEnvironment;  // "box <i>", "cylinder <i>"
 }
 

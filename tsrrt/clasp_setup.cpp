@@ -30,6 +30,29 @@ void fit_sample_box(PlannerParameters& p, const perception::ObjectModel& object,
   p.sample_max = box.max() + Eigen::Vector3d::Constant(0.3);
 }
 
+std::vector<Eigen::Vector3d> without_robot(const robots::RobotModel& model,
+                                           const Eigen::VectorXd& start,
+                                           std::vector<Eigen::Vector3d> voxels, double edge);
+
+// A search whose attempts most often ran into space no camera saw names a camera that would see
+// where they met it (next_view.hpp), at least 5 cm clear of the environment and of the robot at
+// its start.
+void suggest_view(const robots::RobotModel& model, ClaspResult& r,
+                  const std::vector<Eigen::Vector3d>& unseen_contacts) {
+  if (!r.object.sensed || !r.statistics.connect_outcomes.unseen_space_leads()) return;
+  constexpr double kClear = 0.05;
+  perception::ViewOptions o;
+  o.allowed = [&](const Eigen::Vector3d& p) {
+    for (const EnvironmentBox& b : r.environment)
+      if (((b.pose.inverse() * p).cwiseAbs() - 0.5 * b.size).maxCoeff() <= kClear) return false;
+    return !without_robot(model, r.start, {p}, 2 * kClear / std::sqrt(3.0)).empty();
+  };
+  r.next_view =
+      perception::view_into_unknown(*r.object.sensed, unseen_contacts, r.object.support_plane, o);
+  if (r.next_view)
+    r.reason += "; the space it ran into is unseen: " + perception::view_text(*r.next_view);
+}
+
 // The clasp controller alone toward the nearest clasp target. A run that the object stops
 // inside the tree's goal region (eq. 4 mean at least the goal tolerance, ClaspProblem::reached)
 // ends as the planner's goal nodes do: the fingers closed to contact and the clasp verified. A
@@ -142,6 +165,7 @@ void run_search(const ClaspScene& scene, const Say& say, ClaspResult& r) {
   r.verification = check;
   if (!plan.success) {
     r.reason = plan.reason;
+    suggest_view(scene.robot, r, problem.unseen_contacts());
     return;
   }
   say("  clasp found after " + std::to_string(plan.cycles) + " cycles, " +

@@ -26,6 +26,7 @@
 
 #include "core/input_error.hpp"
 #include "core/mesh.hpp"
+#include "perception/next_view.hpp"
 #include "perception/pipeline.hpp"
 #include "robots/collision_world.hpp"
 #include "robots/hand_size.hpp"
@@ -178,6 +179,10 @@ struct ClaspResult {
   /// enter. Empty without a sensed map (a mesh, or a cloud without a sensor origin).
   std::vector<Eigen::Vector3d> unseen_voxels;
   double unseen_edge = 0.0;
+
+  /// kNoClasp after a search whose attempts most often ran into unseen space: a camera that
+  /// would see most of the unknown space where the robot met it (also in `reason`).
+  std::optional<perception::ViewSuggestion> next_view;
 
   ClaspMotion motion;
   ClaspTaskState final_state;  ///< when motion.waypoints is not empty

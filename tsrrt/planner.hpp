@@ -3,6 +3,7 @@
 // to the tree in joint space); and the randomized path pruning applied to its solution.
 #pragma once
 
+#include <algorithm>
 #include <cstdint>
 #include <functional>
 #include <string>
@@ -75,6 +76,13 @@ struct ConnectOutcomes {
   int sampled_clasps = 0;
   int joined = 0;
 
+  /// Unseen space is the most common failed ending (as describe() in the reason names it: on a
+  /// tie, contact with the object or the environment comes first).
+  bool unseen_space_leads() const {
+    return contact_unseen > std::max(contact_object, contact_environment) &&
+           contact_unseen >=
+               std::max({self_collision, joint_limits, stall, rejected, step_cap, time_limit});
+  }
   /// The sum of the endings (equals `attempts`).
   int endings() const {
     return accepted + rejected + contact_object + contact_environment + contact_unseen +

@@ -329,6 +329,11 @@ py::dict plan(const Robot& robot, const PlanArgs& a) {
   out["target"] = result.motion.target;
   out["virtual_linking"] = result.final_state.virtual_linking;
   out["verification"] = cli::verification_json(result.verification).dump();
+  out["next_best_view"] = py::none();
+  if (const auto& v = result.next_view)
+    out["next_best_view"] =
+        py::dict(py::arg("position") = v->position, py::arg("target") = v->target,
+                 py::arg("visible_voxels") = v->visible, py::arg("unknown_voxels") = v->unknown);
   out["object"] = object_dict(result.object);
   const tsrrt::ClaspTimings& t = result.timings;
   out["timings"] =

@@ -14,6 +14,7 @@
 #include "perception/depth_render.hpp"
 #include "perception/depth_surface.hpp"
 #include "perception/homology.hpp"
+#include "perception/next_view.hpp"
 #include "perception/pipeline.hpp"
 
 namespace claspplan::perception {
@@ -256,6 +257,27 @@ void BM_SensedSpace(benchmark::State& state) {
   state.counters["blocked"] = static_cast<double>(blocked);
 }
 BENCHMARK(BM_SensedSpace)->Arg(0)->Arg(1)->Unit(benchmark::kMillisecond);
+
+// The next best view (next_view.hpp) for a search that ran into the purse's unseen space: 4,000
+// contact points spread over the unknown voxels above its table (two views, as above).
+void BM_NextView(benchmark::State& state) {
+  TriangleMesh scene = objects::purse();
+  append_mesh(scene, objects::ground_plane(1.2));
+  const std::vector<DepthView> views = noisy_views(scene, objects::purse_cameras(2));
+  const SensedSpace space(views, object_region(bounds(objects::purse()), 0.08));
+  std::vector<Eigen::Vector3d> unknown;
+  for (const auto& c : space.blocked_voxels())
+    if (c.z() > 0.01) unknown.push_back(c);
+  std::vector<Eigen::Vector3d> contacts;
+  for (std::size_t i = 0; i < 4000; ++i) contacts.push_back(unknown[i * unknown.size() / 4000]);
+  std::optional<ViewSuggestion> view;
+  for (auto _ : state) {
+    view = view_into_unknown(space, contacts, Eigen::Vector4d(0, 0, 1, 0));
+    benchmark::DoNotOptimize(view);
+  }
+  state.counters["visible_share"] = view ? view->visible / view->unknown : 0.0;
+}
+BENCHMARK(BM_NextView)->Unit(benchmark::kMillisecond);
 
 }  // namespace
 }  // namespace claspplan::perception

@@ -410,8 +410,33 @@ TEST(Planner, UnreachableLoopIsExitOneWithAReason) {
   EXPECT_EQ(reason.find('\n'), std::string::npos) << reason;
   expect_connect_outcomes(s["connect_outcomes"]);
   expect_connect_outcomes(read_json(dir.file("out/result.json"))["connect_outcomes"]);
-  EXPECT_TRUE(std::filesystem::exists(dir.file("out/result.json")));
   EXPECT_TRUE(std::filesystem::exists(dir.file("out/tree.png")));
+  // Out of reach, not unseen: no camera is named.
+  EXPECT_FALSE(read_json(dir.file("out/result.json")).contains("next_best_view"));
+}
+
+// The jug turned away, with a second object 6 cm behind its handle: the gap between them is in
+// the shadow of all three cameras, and the search runs into it. The reason names a camera that
+// would see it, as a scenario's camera entry, and result.json holds the same camera.
+TEST(Planner, ASearchIntoUnseenSpaceNamesACameraThatWouldSeeIt) {
+  TempDir dir;
+  const CliResult r =
+      run_cli({"run", scenario("conditions/jug_yaw270_armar3"), "--seed", "3", "--max-cycles", "60",
+               "--no-pictures", "--out", dir.file("out"), "--json"});
+  ASSERT_EQ(r.exit_code, 1) << r.err;
+  const json s = r.json();
+  const std::string reason = s["reason"].get<std::string>();
+  EXPECT_NE(reason.find("most ran into space no sensor saw"), std::string::npos) << reason;
+  EXPECT_NE(reason.find("a camera {position: ["), std::string::npos) << reason;
+  const json view = read_json(dir.file("out/result.json")).at("next_best_view");
+  const Eigen::Vector3d position(view["position"][0], view["position"][1], view["position"][2]);
+  const Eigen::Vector3d target(view["target"][0], view["target"][1], view["target"][2]);
+  EXPECT_NEAR((position - target).norm(), 0.6, 1e-6);
+  EXPECT_GT(position.z(), 0.2 + 0.05) << "above the 20 cm table";
+  // It looks at the gap: between the jug (0.55, 0) and the second object (x 0.75-0.83).
+  EXPECT_GT(target.x(), 0.55);
+  EXPECT_LT(target.x(), 0.75);
+  EXPECT_GT(view["visible_voxels"].get<double>(), 0.0);
 }
 
 // A clasp planned with a robot description file, named relative to the scenario run from its own

@@ -65,36 +65,37 @@ inline std::string capsule_hand_urdf(const std::string& thumb, bool pointing_dow
          finger("finger", 1) + thumb + "</robot>";
 }
 
-inline robots::RobotModel capsule_hand(bool pointing_down = false) {
-  const std::string urdf = capsule_hand_urdf(finger("thumb", -1), pointing_down);
-  const std::string yaml = R"(name: capsule_hand
-urdf: capsule_hand.urdf
-arm: {joints: [lift], home: [0], tool_link: tool0}
-hand:
-  base_link: palm
-  joints:
-    - {name: finger_1, open: 0.4, closing: -1}
-    - {name: finger_2, open: 0.0, closing: -1}
-    - {name: thumb_1, open: -0.4, closing: 1}
-    - {name: thumb_2, open: 0.0, closing: 1}
-  fingers:
-    - {name: finger, joints: [finger_1, finger_2], links: [finger_base, finger_distal]}
-    - {name: thumb, thumb: true, joints: [thumb_1, thumb_2], links: [thumb_base, thumb_distal]}
+// The hand's description: `joints` its hand joints' entries (YAML flow maps, one per line), the
+// thumb moved by `thumb_joints` ("[thumb_1, thumb_2]").
+inline std::string capsule_hand_yaml(const std::string& name, const std::string& joints,
+                                     const std::string& thumb_joints) {
+  return "name: " + name + "\nurdf: " + name +
+         ".urdf\narm: {joints: [lift], home: [0], tool_link: tool0}\nhand:\n  base_link: palm\n"
+         "  joints:\n" +
+         joints +
+         "  fingers:\n"
+         "    - {name: finger, joints: [finger_1, finger_2], links: [finger_base, finger_distal]}\n"
+         "    - {name: thumb, thumb: true, joints: " +
+         thumb_joints + R"(, links: [thumb_base, thumb_distal]}
   curves:
     - name: finger-thumb
-      points:
-        - {link: finger_tip}
-        - {link: finger_distal}
-        - {link: finger_base}
-        - {link: palm}
-        - {link: thumb_base}
-        - {link: thumb_distal}
-        - {link: thumb_tip}
+      points: [{link: finger_tip}, {link: finger_distal}, {link: finger_base}, {link: palm},
+               {link: thumb_base}, {link: thumb_distal}, {link: thumb_tip}]
   tcp: {link: palm, xyz: [0, 0, 0.03]}
   v_fwd: {link: tool0, vector: [0, 0, 1]}
   v_swd: {link: tool0, vector: [0, 1, 0]}
   vlink_goal: 0.8
 )";
+}
+
+inline robots::RobotModel capsule_hand(bool pointing_down = false) {
+  const std::string urdf = capsule_hand_urdf(finger("thumb", -1), pointing_down);
+  const std::string yaml = capsule_hand_yaml("capsule_hand",
+                                             "    - {name: finger_1, open: 0.4, closing: -1}\n"
+                                             "    - {name: finger_2, open: 0.0, closing: -1}\n"
+                                             "    - {name: thumb_1, open: -0.4, closing: 1}\n"
+                                             "    - {name: thumb_2, open: 0.0, closing: 1}\n",
+                                             "[thumb_1, thumb_2]");
   return robots::load_robot_from_text(yaml, urdf, "capsule_hand.yaml", "capsule_hand.urdf");
 }
 

@@ -65,26 +65,10 @@ TEST(FingerClosing, AMotorSharedThroughMimicJointsStopsForEveryLinkItMoves) {
                  "<mimic joint=\"finger_" + std::string(j).substr(6) + "\" multiplier=\"-1\"/>");
   }
   const std::string urdf = capsule_hand_urdf(thumb);
-  const std::string yaml = R"(name: one_motor
-urdf: one_motor.urdf
-arm: {joints: [lift], home: [0], tool_link: tool0}
-hand:
-  base_link: palm
-  joints:
-    - {name: finger_1, open: 0.4, closing: -1}
-    - {name: finger_2, open: 0.0, closing: -1}
-  fingers:
-    - {name: finger, joints: [finger_1, finger_2], links: [finger_base, finger_distal]}
-    - {name: thumb, thumb: true, joints: [finger_1, finger_2], links: [thumb_base, thumb_distal]}
-  curves:
-    - name: finger-thumb
-      points: [{link: finger_tip}, {link: finger_distal}, {link: finger_base}, {link: palm},
-               {link: thumb_base}, {link: thumb_distal}, {link: thumb_tip}]
-  tcp: {link: palm, xyz: [0, 0, 0.03]}
-  v_fwd: {link: tool0, vector: [0, 0, 1]}
-  v_swd: {link: tool0, vector: [0, 1, 0]}
-  vlink_goal: 0.8
-)";
+  const std::string yaml = capsule_hand_yaml("one_motor",
+                                             "    - {name: finger_1, open: 0.4, closing: -1}\n"
+                                             "    - {name: finger_2, open: 0.0, closing: -1}\n",
+                                             "[finger_1, finger_2]");
   const robots::RobotModel model =
       robots::load_robot_from_text(yaml, urdf, "one_motor.yaml", "one_motor.urdf");
   const int motor = model.joint_index("finger_1");
