@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <stdexcept>
 
 #include <fcl/geometry/bvh/BVH_model.h>
@@ -143,6 +144,9 @@ struct CollisionWorld::Impl {
   // query placed some), and the shape that touched the object last.
   Eigen::VectorXd placed_q;
   int last_hit = -1;
+  // The last full check's contact with the environment: shape and item (-1: none). The shape
+  // stays placed (tf, box) until the next check.
+  std::pair<int, int> env_hit{-1, -1};
 
   bool self_enabled = true;
   bool hand_self_enabled = true;
@@ -207,6 +211,7 @@ struct CollisionWorld::Impl {
 
   void place(const RobotData& d, int s) {
     placed_q.resize(0);
+    if (s == env_hit.first) env_hit = {-1, -1};  // moved: its contact is gone
     tf[s] = d.link_poses[shapes[s].link] * shapes[s].origin;
     box[s] = shapes[s].primitive.bounds(tf[s]);
   }
@@ -267,9 +272,7 @@ struct CollisionWorld::Impl {
     const int e = shape_hits_environment(s);
     if (e >= 0) {
       report(r, link, environment[e].name);
-      if (r)
-        r->point = fcl_contact_point(shapes[s].geometry.get(), tf[s], environment[e].geometry.get(),
-                                     environment[e].pose, box[s], environment[e].box);
+      env_hit = {s, e};
       return true;
     }
     if (shape_hits_object(s)) {
@@ -281,6 +284,7 @@ struct CollisionWorld::Impl {
 
   bool check(const RobotData& d, CollisionReport* r) {
     if (r) *r = CollisionReport{};
+    env_hit = {-1, -1};
     place_all(d);
     for (size_t s = 0; s < shapes.size(); ++s)
       if (external(static_cast<int>(s), r)) return true;
@@ -535,6 +539,14 @@ double CollisionWorld::link_object_distance(const RobotData& data, int link, dou
     best = std::min(best, std::max(0.0, d));
   }
   return best;
+}
+
+Eigen::Vector3d CollisionWorld::environment_contact() const {
+  const Impl& m = *impl_;
+  const auto [s, e] = m.env_hit;
+  if (s < 0) return Eigen::Vector3d::Constant(std::numeric_limits<double>::quiet_NaN());
+  return fcl_contact_point(m.shapes[s].geometry.get(), m.tf[s], m.environment[e].geometry.get(),
+                           m.environment[e].pose, m.box[s], m.environment[e].box);
 }
 
 bool CollisionWorld::motion_free(const Eigen::VectorXd& q0, const Eigen::VectorXd& q1,

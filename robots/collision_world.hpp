@@ -19,7 +19,6 @@
 // A CollisionWorld keeps internal scratch state: use one per thread.
 #pragma once
 
-#include <limits>
 #include <memory>
 #include <string>
 #include <utility>
@@ -39,9 +38,6 @@ struct CollisionReport {
   std::string second;  ///< a link name, "object", "box <i>" or "cylinder <i>"
   int first_link = -1;
   int second_link = -1;  ///< -1 unless `second` is a link
-  /// Where the link met the environment (a box, a cylinder, unseen space), world frame: FCL's
-  /// contact point, or the middle of the two bounding boxes' overlap. NaN for other contacts.
-  Eigen::Vector3d point = Eigen::Vector3d::Constant(std::numeric_limits<double>::quiet_NaN());
 };
 
 /// An object's collision geometry: FCL bounding-volume trees and, for exact round shapes, a
@@ -148,6 +144,13 @@ class CollisionWorld {
   /// checked; samples are visited coarse-to-fine (bisection order), so collisions show early.
   bool motion_free(const Eigen::VectorXd& q0, const Eigen::VectorXd& q1, double resolution,
                    CollisionReport* report = nullptr);
+
+  /// Where the last in_collision or motion_free touched the environment (a box, a cylinder,
+  /// unseen space), world frame: FCL's contact point, or the middle of the two bounding boxes'
+  /// overlap. NaN when its contact was another (the object, the robot itself), it found none, or
+  /// a later query moved the shape. Computed on request: a contact point costs more than the
+  /// yes/no answer, which is all most callers need.
+  Eigen::Vector3d environment_contact() const;
 
  private:
   struct Impl;

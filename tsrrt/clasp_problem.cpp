@@ -57,8 +57,8 @@ MotionCheck ClaspProblem::check_motion(const Eigen::VectorXd& q0, const Eigen::V
   if (report.second == "object") return MotionCheck::kObject;
   if (report.second_link >= 0) return MotionCheck::kSelf;
   if (report.second == "unseen space") {
-    if (unseen_contacts_.size() < kMaxContacts && report.point.allFinite())
-      unseen_contacts_.push_back(report.point);
+    if (unseen_contacts_.size() < kMaxContacts)
+      unseen_contacts_.push_back(world_.environment_contact());
     return MotionCheck::kUnseen;
   }
   return MotionCheck::kEnvironment;  // "box <i>", "cylinder <i>"

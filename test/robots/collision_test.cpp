@@ -124,7 +124,8 @@ TEST(Collision, Boxes) {
   // Where they touch: on the box (FCL's contact, or the middle of the boxes' overlap).
   const Eigen::AlignedBox3d box_1(Eigen::Vector3d(0.775, -0.1, 0.69),
                                   Eigen::Vector3d(0.825, 0.1, 0.71));
-  EXPECT_LE(box_1.exteriorDistance(report.point), 0.01) << report.point.transpose();
+  EXPECT_LE(box_1.exteriorDistance(world.environment_contact()), 0.01)
+      << world.environment_contact().transpose();
   // The same for space no sensor saw: 5 mm voxels of the box's top layer.
   world.clear_environment();
   std::vector<Eigen::Vector3d> voxels;
@@ -133,7 +134,8 @@ TEST(Collision, Boxes) {
   world.add_voxels(voxels, 0.005);
   EXPECT_TRUE(world.in_collision(m.home, &report));
   EXPECT_EQ(report.second, "unseen space");
-  EXPECT_LE(box_1.exteriorDistance(report.point), 0.01) << report.point.transpose();
+  EXPECT_LE(box_1.exteriorDistance(world.environment_contact()), 0.01)
+      << world.environment_contact().transpose();
   world.clear_environment();
   EXPECT_FALSE(world.in_collision(m.home));
   // A table the base stands in: the base never moves, so it is not checked.
@@ -165,7 +167,7 @@ TEST(Collision, MeshObjectAndItsPose) {
   EXPECT_TRUE(world.in_collision(m.home, &report));
   EXPECT_EQ(report.second, "object");
   EXPECT_EQ(report.first, "sdh_palm_link");
-  EXPECT_TRUE(report.point.hasNaN()) << "a point only for the environment";
+  EXPECT_TRUE(world.environment_contact().hasNaN()) << "a point only for the environment";
   // Far away.
   world.set_object_pose(bar_pose(1.5, 0.5));
   EXPECT_FALSE(world.in_collision(m.home));
