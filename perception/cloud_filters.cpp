@@ -138,6 +138,14 @@ PointCloud even_subset(const PointCloud& cloud, int count, std::uint64_t seed) {
   return random_subset(even, count, seed);
 }
 
+SupportHeight::SupportHeight(const std::optional<Eigen::Vector4d>& plane) {
+  if (!plane) return;
+  const double length = plane->head<3>().norm();
+  up = plane->head<3>() / length;
+  offset = (*plane)[3] / length;
+  known = true;
+}
+
 PlaneRemovalResult remove_supporting_plane(const PointCloud& cloud, const PlaneRemovalOptions& o) {
   const auto unchanged = [&cloud] {  // the cloud as it is: no plane removed
     PlaneRemovalResult u;

@@ -4,6 +4,7 @@
 
 #include <cstdint>
 #include <limits>
+#include <optional>
 
 #include <Eigen/Geometry>
 
@@ -29,6 +30,18 @@ struct PlaneRemovalResult {
   bool removed = false;               ///< a supporting plane was found and removed
   Eigen::Vector4d plane{0, 0, 1, 0};  ///< n·p + c = 0, n towards the object (+z side)
   int plane_points = 0;               ///< points removed as on (or below) the plane
+};
+
+/// Heights above a supporting plane n·p + c = 0 (n up, of any length), in metres.
+struct SupportHeight {
+  explicit SupportHeight(const std::optional<Eigen::Vector4d>& plane);
+  /// Signed height of p; +infinity without a plane (nothing is below it then).
+  double operator()(const Eigen::Vector3d& p) const {
+    return known ? up.dot(p) + offset : std::numeric_limits<double>::infinity();
+  }
+  Eigen::Vector3d up = Eigen::Vector3d::UnitZ();  ///< the plane's unit normal (+z without one)
+  double offset = 0.0;
+  bool known = false;
 };
 
 /// Removes the supporting surface (a table or floor): the largest RANSAC plane (PCL
@@ -58,6 +71,7 @@ PointCloud even_subset(const PointCloud& cloud, int count, std::uint64_t seed);
 /// nearly uniform, which keeps K_d free of sampling gaps. O(M log M) with a k-d tree (a radius
 /// update per pick). Returns indices into `cloud`, in pick order.
 std::vector<int> farthest_point_indices(const PointCloud& cloud, int count, std::uint64_t seed);
+
 PointCloud farthest_point_sample(const PointCloud& cloud, int count, std::uint64_t seed);
 
 /// Mean distance from each point to its nearest other point. Throws for fewer than 2 points.

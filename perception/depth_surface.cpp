@@ -8,6 +8,7 @@
 #include <string>
 
 #include "core/input_error.hpp"
+#include "perception/cloud_filters.hpp"
 
 namespace claspplan::perception {
 
@@ -57,13 +58,7 @@ class Grid {
     p_.resize(n);
     usable_.assign(n, false);
     const bool crop = !o.workspace.isEmpty();
-    Eigen::Vector3d normal = Eigen::Vector3d::Zero();
-    double offset = 0.0;
-    if (o.support_plane) {
-      const double len = o.support_plane->head<3>().norm();
-      normal = o.support_plane->head<3>() / len;
-      offset = (*o.support_plane)[3] / len;
-    }
+    const SupportHeight height(o.support_plane);
     for (int j = 0; j < nv_; ++j)
       for (int i = 0; i < nu_; ++i) {
         const size_t k = index(i, j);
@@ -72,7 +67,7 @@ class Grid {
         z_[k] = z;
         p_[k] = cam_.back_project(i * s_, j * s_, z);
         if (crop && !o.workspace.contains(p_[k])) continue;
-        if (o.support_plane && normal.dot(p_[k]) + offset < o.plane_margin) continue;
+        if (height(p_[k]) < o.plane_margin) continue;
         usable_[k] = true;
       }
     cos_view_ = std::cos(o.max_view_angle);

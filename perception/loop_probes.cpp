@@ -4,6 +4,8 @@
 #include <cmath>
 #include <limits>
 
+#include "perception/cloud_filters.hpp"
+
 namespace claspplan::perception {
 
 Seen seen_from(const std::vector<DepthView>& views, const Eigen::Vector3d& q, double tol) {
@@ -109,13 +111,13 @@ double bar_at(const PointIndex& index, const std::vector<DepthView>& views,
   // extent is unknown (a wall seen from its top hides 4-6: it may reach down to the support).
   const Eigen::Vector3d u1 = t.unitOrthogonal(), u2 = t.cross(u1);
   const double ring = 0.5 * diameter + 0.5 * finger + 0.5 * link;
+  const SupportHeight height(support);
   int blocked = 0, hidden = 0;
   for (int k = 0; k < 12; ++k) {
     const double a = 2.0 * M_PI * k / 12.0;
     const Eigen::Vector3d q = centre + ring * (std::cos(a) * u1 + std::sin(a) * u2);
     const bool material = index.count_within(q, 0.5 * finger, 1) > 0;
-    const bool below = support && (support->head<3>().dot(q) + (*support)[3]) <
-                                      0.5 * finger * support->head<3>().norm();
+    const bool below = height(q) < 0.5 * finger;
     blocked += material || below;
     hidden += !material && !below && !views.empty() && seen_from(views, q, 0.005) == Seen::kBlocked;
   }
@@ -173,11 +175,9 @@ Eigen::Vector3d next_best_view(const Eigen::Vector3d& centre, const Eigen::Vecto
   if (plus.free == minus.free) side = u.z() >= 0 ? 1.0 : -1.0;
   Eigen::Vector3d view = centre + side * kDistance * u;
   if (!support) return view;
-  const Eigen::Vector3d up = support->head<3>().normalized();
-  const double offset = (*support)[3] / support->head<3>().norm();
-  const auto height = [&](const Eigen::Vector3d& p) { return up.dot(p) + offset; };
+  const SupportHeight height(support);
   if (height(view) < kAbove) view = centre - side * kDistance * u;
-  if (height(view) < kAbove) view += (kAbove - height(view)) * up;
+  if (height(view) < kAbove) view += (kAbove - height(view)) * height.up;
   return view;
 }
 

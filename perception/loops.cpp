@@ -10,6 +10,7 @@
 #include <Eigen/Eigenvalues>
 
 #include "core/polygon.hpp"
+#include "perception/cloud_filters.hpp"
 #include "perception/loop_probes.hpp"
 #include "perception/point_index.hpp"
 #include "perception/sensed_space.hpp"
@@ -303,10 +304,9 @@ bool clear_of_support(Loop& loop, const PointIndex& index, const Eigen::AlignedB
                       const RankingOptions& options, const Hole& hole) {
   if (!options.support_plane) return true;
   const Eigen::Vector3d& n = hole.normal;
-  const Eigen::Vector3d up = options.support_plane->head<3>().normalized();
-  const double height =
-      (options.support_plane->head<3>().dot(loop.centre) + (*options.support_plane)[3]) /
-      options.support_plane->head<3>().norm();
+  const SupportHeight support(options.support_plane);
+  const Eigen::Vector3d& up = support.up;
+  const double height = support(loop.centre);
   const double descent = -up.dot(n);  // height lost per metre along +n
   const Eigen::Vector3d down = (descent > 0 ? 1.0 : -1.0) * n;
   if (std::abs(descent) <= 1e-9) return true;

@@ -2,8 +2,11 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <cstdio>
 #include <limits>
+
+#include "perception/cloud_filters.hpp"
 
 namespace claspplan::perception {
 namespace {
@@ -48,15 +51,8 @@ std::optional<ViewSuggestion> view_into_unknown(const SensedSpace& space,
                                                 const std::optional<Eigen::Vector4d>& support,
                                                 const ViewOptions& o) {
   if (space.empty() || points.empty()) return std::nullopt;
-  Eigen::Vector3d up = Eigen::Vector3d::UnitZ();
-  double offset = 0.0;
-  if (support) {
-    up = support->head<3>().normalized();
-    offset = (*support)[3] / support->head<3>().norm();
-  }
-  const auto height = [&](const Eigen::Vector3d& p) {
-    return support ? up.dot(p) + offset : std::numeric_limits<double>::infinity();
-  };
+  const SupportHeight height(support);
+  const Eigen::Vector3d& up = height.up;
 
   // The unknown voxels near the points, above the support (below it is the table's inside), in
   // grid order: the same set whatever the points' order.
@@ -66,7 +62,17 @@ std::optional<ViewSuggestion> view_into_unknown(const SensedSpace& space,
   const auto index = [&](int i, int j, int k) {
     return (static_cast<std::size_t>(k) * dims.y() + j) * dims.x() + i;
   };
-  for (const Eigen::Vector3d& p : points) {
+  // Points in one voxel count as its centre: thousands of contacts often share a few voxels.
+  std::vector<std::uint8_t> walked(near.size(), 0);
+  for (const Eigen::Vector3d& contact : points) {
+    const Eigen::Vector3i v = ((contact - space.region().min()) / h).array().floor().cast<int>();
+    Eigen::Vector3d p = contact;
+    if ((v.array() >= 0).all() && (v.array() < dims.array()).all()) {
+      std::uint8_t& seen = walked[index(v.x(), v.y(), v.z())];
+      if (seen) continue;
+      seen = 1;
+      p = space.centre(v.x(), v.y(), v.z());
+    }
     const Eigen::Vector3d lo = (p.array() - o.radius - space.region().min().array()) / h;
     const Eigen::Vector3d hi = (p.array() + o.radius - space.region().min().array()) / h;
     const Eigen::Vector3i a = lo.array().floor().cast<int>().max(0);

@@ -43,10 +43,10 @@ struct ViewOptions {
 
 /// The camera, among positions `distance` from the unknown voxels' centroid (elevations 0-90
 /// degrees over the support plane, or world +z without one, every 15 degrees of azimuth), whose
-/// straight rays are expected to reach most of the unknown voxels within `radius` of `points`: a
-/// ray through an occupied voxel reaches nothing, one through unknown space the less likely the
-/// more of it it crosses. Nothing when that space has no unknown voxel or no position is expected
-/// to see `min_share` of it.
+/// straight rays are expected to reach most of the unknown voxels within `radius` of `points` (a
+/// point inside the grid stands for its voxel's centre): a ray through an occupied voxel reaches
+/// nothing, one through unknown space the less likely the more of it it crosses. Nothing when that
+/// space has no unknown voxel or no position is expected to see `min_share` of it.
 std::optional<ViewSuggestion> view_into_unknown(const SensedSpace& space,
                                                 const std::vector<Eigen::Vector3d>& points,
                                                 const std::optional<Eigen::Vector4d>& support,

@@ -11,6 +11,7 @@
 #include <utility>
 
 #include "core/parallel.hpp"
+#include "perception/cloud_filters.hpp"
 
 namespace claspplan::perception {
 
@@ -268,13 +269,7 @@ std::array<long, 3> SensedSpace::counts() const {
 
 std::vector<Eigen::Vector3d> SensedSpace::blocked_voxels(
     const std::optional<Eigen::Vector4d>& support, double margin) const {
-  Eigen::Vector3d normal = Eigen::Vector3d::Zero();
-  double offset = 0.0;
-  if (support) {
-    const double len = support->head<3>().norm();
-    normal = support->head<3>() / len;
-    offset = (*support)[3] / len;
-  }
+  const SupportHeight height(support);
   std::vector<Eigen::Vector3d> out;
   if (empty()) return out;
   cells();  // the whole grid, cast once
@@ -284,8 +279,7 @@ std::vector<Eigen::Vector3d> SensedSpace::blocked_voxels(
         const Sensed s = cell(i, j, k);
         if (s == Sensed::kFree) continue;
         const Eigen::Vector3d p = centre(i, j, k);
-        if (s == Sensed::kUnknown || (support && normal.dot(p) + offset <= margin))
-          out.push_back(p);
+        if (s == Sensed::kUnknown || height(p) <= margin) out.push_back(p);
       }
   return out;
 }

@@ -541,12 +541,20 @@ double CollisionWorld::link_object_distance(const RobotData& data, int link, dou
   return best;
 }
 
-Eigen::Vector3d CollisionWorld::environment_contact() const {
+EnvironmentHit CollisionWorld::environment_hit() const {
   const Impl& m = *impl_;
   const auto [s, e] = m.env_hit;
-  if (s < 0) return Eigen::Vector3d::Constant(std::numeric_limits<double>::quiet_NaN());
-  return fcl_contact_point(m.shapes[s].geometry.get(), m.tf[s], m.environment[e].geometry.get(),
-                           m.environment[e].pose, m.box[s], m.environment[e].box);
+  if (s < 0) return {};
+  return {s, e, m.tf[s]};
+}
+
+Eigen::Vector3d CollisionWorld::contact_point(const EnvironmentHit& hit) const {
+  const Impl& m = *impl_;
+  if (hit.shape < 0) return Eigen::Vector3d::Constant(std::numeric_limits<double>::quiet_NaN());
+  const RobotShape& shape = m.shapes.at(hit.shape);
+  const auto& item = m.environment.at(hit.item);
+  return fcl_contact_point(shape.geometry.get(), hit.shape_pose, item.geometry.get(), item.pose,
+                           shape.primitive.bounds(hit.shape_pose), item.box);
 }
 
 bool CollisionWorld::motion_free(const Eigen::VectorXd& q0, const Eigen::VectorXd& q1,

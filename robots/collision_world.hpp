@@ -53,6 +53,13 @@ std::shared_ptr<const ObjectGeometry> make_object_geometry(
     const std::vector<Eigen::Vector3d>& vertices, const std::vector<Eigen::Vector3i>& triangles,
     bool exact_round_shapes);
 
+/// A robot shape against an environment item, as a collision query left them.
+struct EnvironmentHit {
+  int shape = -1;  ///< the robot's collision shape (-1: no hit)
+  int item = -1;   ///< the environment item
+  Eigen::Isometry3d shape_pose = Eigen::Isometry3d::Identity();  ///< the shape's, world frame
+};
+
 class CollisionWorld {
  public:
   /// Keeps its own copy of the model.
@@ -145,12 +152,15 @@ class CollisionWorld {
   bool motion_free(const Eigen::VectorXd& q0, const Eigen::VectorXd& q1, double resolution,
                    CollisionReport* report = nullptr);
 
-  /// Where the last in_collision or motion_free touched the environment (a box, a cylinder,
-  /// unseen space), world frame: FCL's contact point, or the middle of the two bounding boxes'
-  /// overlap. NaN when its contact was another (the object, the robot itself), it found none, or
-  /// a later query moved the shape. Computed on request: a contact point costs more than the
-  /// yes/no answer, which is all most callers need.
-  Eigen::Vector3d environment_contact() const;
+  /// What the last in_collision or motion_free touched of the environment (a box, a cylinder,
+  /// unseen space): no hit when its contact was another (the object, the robot itself), it found
+  /// none, or a later query moved the shape. Cheap to keep; contact_point() makes it a point.
+  EnvironmentHit environment_hit() const;
+
+  /// Where `hit` touched, world frame: FCL's contact point, or the middle of the two bounding
+  /// boxes' overlap; NaN for no hit. A contact point costs more than the yes/no answer, which is
+  /// all most callers need, so it is computed only on request.
+  Eigen::Vector3d contact_point(const EnvironmentHit& hit) const;
 
  private:
   struct Impl;

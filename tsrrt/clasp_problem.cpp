@@ -57,11 +57,18 @@ MotionCheck ClaspProblem::check_motion(const Eigen::VectorXd& q0, const Eigen::V
   if (report.second == "object") return MotionCheck::kObject;
   if (report.second_link >= 0) return MotionCheck::kSelf;
   if (report.second == "unseen space") {
-    if (unseen_contacts_.size() < kMaxContacts)
-      unseen_contacts_.push_back(world_.environment_contact());
+    if (unseen_hits_.size() < kMaxContacts) unseen_hits_.push_back(world_.environment_hit());
     return MotionCheck::kUnseen;
   }
   return MotionCheck::kEnvironment;  // "box <i>", "cylinder <i>"
+}
+
+std::vector<Eigen::Vector3d> ClaspProblem::unseen_contacts() const {
+  std::vector<Eigen::Vector3d> points;
+  points.reserve(unseen_hits_.size());
+  for (const robots::EnvironmentHit& hit : unseen_hits_)
+    points.push_back(world_.contact_point(hit));
+  return points;
 }
 
 bool ClaspProblem::sample_configuration(const std::function<std::uint64_t()>& bits,

@@ -46,8 +46,8 @@ class ClaspProblem final : public PlanningProblem {
   /// (half the diagonal of its finger curves' bounding box) plus 2 cm, within [0.08, 0.12] m.
   double approach_distance() const { return approach_distance_; }
   /// Where checked motions met space no sensor saw (world frame), the first kMaxContacts: what
-  /// a next camera should see (next_view.hpp).
-  const std::vector<Eigen::Vector3d>& unseen_contacts() const { return unseen_contacts_; }
+  /// a next camera should see (next_view.hpp). Computed on request, from the hits kept.
+  std::vector<Eigen::Vector3d> unseen_contacts() const;
 
   static constexpr std::size_t kMaxContacts = 20000;
   static constexpr double kLimitMargin = 0.05;  ///< rad (m): one controller step at most
@@ -60,7 +60,7 @@ class ClaspProblem final : public PlanningProblem {
   Eigen::VectorXd last_q_;  // the last control() result: continuing from it keeps the alignment
   bool limited_ = false;
   double approach_distance_ = 0.1;
-  std::vector<Eigen::Vector3d> unseen_contacts_;
+  std::vector<robots::EnvironmentHit> unseen_hits_;
 };
 
 }  // namespace claspplan::tsrrt

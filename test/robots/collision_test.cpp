@@ -124,8 +124,8 @@ TEST(Collision, Boxes) {
   // Where they touch: on the box (FCL's contact, or the middle of the boxes' overlap).
   const Eigen::AlignedBox3d box_1(Eigen::Vector3d(0.775, -0.1, 0.69),
                                   Eigen::Vector3d(0.825, 0.1, 0.71));
-  EXPECT_LE(box_1.exteriorDistance(world.environment_contact()), 0.01)
-      << world.environment_contact().transpose();
+  const Eigen::Vector3d on_box = world.contact_point(world.environment_hit());
+  EXPECT_LE(box_1.exteriorDistance(on_box), 0.01) << on_box.transpose();
   // The same for space no sensor saw: 5 mm voxels of the box's top layer.
   world.clear_environment();
   std::vector<Eigen::Vector3d> voxels;
@@ -134,8 +134,14 @@ TEST(Collision, Boxes) {
   world.add_voxels(voxels, 0.005);
   EXPECT_TRUE(world.in_collision(m.home, &report));
   EXPECT_EQ(report.second, "unseen space");
-  EXPECT_LE(box_1.exteriorDistance(world.environment_contact()), 0.01)
-      << world.environment_contact().transpose();
+  const EnvironmentHit hit = world.environment_hit();
+  // A kept hit gives its point after later queries have moved the shapes.
+  Eigen::VectorXd turned = m.home;
+  turned[0] += 0.5;  // the base turned: the hand 0.37 m to the side
+  EXPECT_FALSE(world.in_collision(turned));
+  EXPECT_LT(world.environment_hit().shape, 0) << "no hit: nothing touched";
+  const Eigen::Vector3d on_voxels = world.contact_point(hit);
+  EXPECT_LE(box_1.exteriorDistance(on_voxels), 0.01) << on_voxels.transpose();
   world.clear_environment();
   EXPECT_FALSE(world.in_collision(m.home));
   // A table the base stands in: the base never moves, so it is not checked.
@@ -167,7 +173,8 @@ TEST(Collision, MeshObjectAndItsPose) {
   EXPECT_TRUE(world.in_collision(m.home, &report));
   EXPECT_EQ(report.second, "object");
   EXPECT_EQ(report.first, "sdh_palm_link");
-  EXPECT_TRUE(world.environment_contact().hasNaN()) << "a point only for the environment";
+  EXPECT_LT(world.environment_hit().shape, 0) << "a hit only for the environment";
+  EXPECT_TRUE(world.contact_point(world.environment_hit()).hasNaN());
   // Far away.
   world.set_object_pose(bar_pose(1.5, 0.5));
   EXPECT_FALSE(world.in_collision(m.home));
