@@ -115,13 +115,6 @@ json planner_json(const tsrrt::ClaspResult& r, const SceneGeometry& scene,
   result["connect_outcomes"] = outcomes;
   if (st.clasp_candidates > st.clasp_candidates_screened)
     result["verification"] = verification_json(r.verification);
-  if (r.next_view) {
-    const perception::ViewSuggestion& v = *r.next_view;
-    result["next_best_view"] = {{"position", {v.position.x(), v.position.y(), v.position.z()}},
-                                {"target", {v.target.x(), v.target.y(), v.target.z()}},
-                                {"visible_voxels", v.visible},
-                                {"unknown_voxels", v.unknown}};
-  }
   const bool found = !r.motion.waypoints.empty();
   json summary = {{"cycles", st.cycles},
                   {"nodes", st.nodes},
@@ -256,6 +249,11 @@ RunOutcome run_scenario(const Scenario& scenario, const RunOptions& options) {
   result.update(scene_json(scene));
   json summary = options.controller_only ? controller_json(r, result, timing)
                                          : planner_json(r, scene, options, result, timing);
+  if (const auto& v = r.next_view)  // a camera for the unseen space the robot ran into
+    result["next_best_view"] = {{"position", {v->position.x(), v->position.y(), v->position.z()}},
+                                {"target", {v->target.x(), v->target.y(), v->target.z()}},
+                                {"visible_voxels", v->visible},
+                                {"unknown_voxels", v->unknown}};
   const std::vector<Eigen::VectorXd>& path = r.motion.waypoints;
   if (path.empty()) {
     result["success"] = false;

@@ -34,6 +34,7 @@ ControllerRun run_controller(ClaspController& controller, robots::CollisionWorld
     const Eigen::VectorXd next = controller.step(q, target.point, 1.0);
     if (!world.motion_free(q, next, o.collision_resolution, &run.collision)) {
       run.collided = true;
+      run.environment_hit = world.environment_hit();
       run.reason =
           "stopped by a collision (" + run.collision.first + " with " + run.collision.second + ")";
       break;

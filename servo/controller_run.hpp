@@ -29,6 +29,7 @@ struct ControllerRun {
   std::string reason;  ///< why it stopped
   bool collided = false;
   robots::CollisionReport collision;       ///< when collided
+  robots::EnvironmentHit environment_hit;  ///< when collided with the environment
   int target = -1;                         ///< the clasp target driven to
   std::vector<Eigen::VectorXd> waypoints;  ///< start to final configuration
   TaskState final_state;

@@ -34,12 +34,11 @@ std::vector<Eigen::Vector3d> without_robot(const robots::RobotModel& model,
                                            const Eigen::VectorXd& start,
                                            std::vector<Eigen::Vector3d> voxels, double edge);
 
-// A search whose attempts most often ran into space no camera saw names a camera that would see
-// where they met it (next_view.hpp), at least 5 cm clear of the environment and of the robot at
-// its start.
+// A camera that would see where the robot met space no camera saw (next_view.hpp), at least 5 cm
+// clear of the environment and of the robot at its start.
 void suggest_view(const robots::RobotModel& model, ClaspResult& r,
                   const std::vector<Eigen::Vector3d>& unseen_contacts) {
-  if (!r.object.sensed || !r.statistics.connect_outcomes.unseen_space_leads()) return;
+  if (!r.object.sensed) return;
   constexpr double kClear = 0.05;
   perception::ViewOptions o;
   o.allowed = [&](const Eigen::Vector3d& p) {
@@ -73,6 +72,8 @@ void run_controller_only(const ClaspRequest& request, const ClaspScene& scene, c
     r.status = ClaspStatus::kSuccess;
     return;
   }
+  if (run.collided && run.collision.second == "unseen space")
+    suggest_view(scene.robot, r, {scene.world.contact_point(run.environment_hit)});
   const double tolerance = closable_tolerance(scene.planning, scene.goal_linking);
   const bool touched_object =
       run.collided && run.collision.second == "object" && r.statistics.control_steps > 0;
@@ -165,7 +166,9 @@ void run_search(const ClaspScene& scene, const Say& say, ClaspResult& r) {
   r.verification = check;
   if (!plan.success) {
     r.reason = plan.reason;
-    suggest_view(scene.robot, r, problem.unseen_contacts());
+    // Named when unseen space is what most attempts ran into, as the reason's "most ..." says.
+    if (r.statistics.connect_outcomes.unseen_space_leads())
+      suggest_view(scene.robot, r, problem.unseen_contacts());
     return;
   }
   say("  clasp found after " + std::to_string(plan.cycles) + " cycles, " +

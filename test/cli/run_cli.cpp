@@ -439,6 +439,27 @@ TEST(Planner, ASearchIntoUnseenSpaceNamesACameraThatWouldSeeIt) {
   EXPECT_GT(view["visible_voxels"].get<double>(), 0.0);
 }
 
+// The clasp controller alone stops where a finger first meets space no camera saw (the jug's
+// handle side, in the second object's shadow); the reason names a camera that would see there.
+TEST(Planner, AControllerRunStoppedByUnseenSpaceNamesACamera) {
+  TempDir dir;
+  const CliResult r = run_cli({"run", scenario("conditions/jug_yaw0_dlr"), "--controller-only",
+                               "--no-pictures", "--out", dir.file("out"), "--json"});
+  ASSERT_EQ(r.exit_code, 1) << r.err;
+  const std::string reason = r.json()["reason"].get<std::string>();
+  EXPECT_NE(
+      reason.find("with unseen space); the space it ran into is unseen: a camera {position: ["),
+      std::string::npos)
+      << reason;
+  const json view = read_json(dir.file("out/result.json")).at("next_best_view");
+  const Eigen::Vector3d position(view["position"][0], view["position"][1], view["position"][2]);
+  const Eigen::Vector3d target(view["target"][0], view["target"][1], view["target"][2]);
+  EXPECT_NEAR((position - target).norm(), 0.6, 1e-6);
+  EXPECT_GT(position.z(), 0.1 + 0.05) << "above the 10 cm table";
+  EXPECT_LT((target - Eigen::Vector3d(0.55, 0, 0.21)).norm(), 0.2) << "at the jug";
+  EXPECT_GT(view["visible_voxels"].get<double>(), 0.0);
+}
+
 // A clasp planned with a robot description file, named relative to the scenario run from its own
 // folder, is verified from another folder: result.json names the description by its absolute path.
 TEST(Verify, WorksFromAnotherFolderWithARobotFile) {
