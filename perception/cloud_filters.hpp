@@ -71,7 +71,6 @@ PointCloud even_subset(const PointCloud& cloud, int count, std::uint64_t seed);
 /// nearly uniform, which keeps K_d free of sampling gaps. O(M log M) with a k-d tree (a radius
 /// update per pick). Returns indices into `cloud`, in pick order.
 std::vector<int> farthest_point_indices(const PointCloud& cloud, int count, std::uint64_t seed);
-
 PointCloud farthest_point_sample(const PointCloud& cloud, int count, std::uint64_t seed);
 
 /// Mean distance from each point to its nearest other point. Throws for fewer than 2 points.
