@@ -159,7 +159,8 @@ class CollisionWorld {
 
   /// Where `hit` touched, world frame: FCL's contact point, or the middle of the two bounding
   /// boxes' overlap; NaN for no hit. A contact point costs more than the yes/no answer, which is
-  /// all most callers need, so it is computed only on request.
+  /// all most callers need, so it is computed only on request. The hit must come from this world
+  /// with its environment unchanged since.
   Eigen::Vector3d contact_point(const EnvironmentHit& hit) const;
 
  private:
