@@ -216,18 +216,21 @@ RunOutcome run_scenario(const Scenario& scenario, const RunOptions& options) {
         {{"rank", l.rank}, {"verdict", perception::verdict_name(l.verdict)}, {"reason", l.reason}});
   const perception::Loop* loop = r.chosen_loop();
   if (options.pictures && r.object.sensed) {
-    // Through the chosen loop, else the first refused for what the sensors saw, else the first.
+    // Through the chosen loop, else the first refused for what the sensors saw, else the first;
+    // through the unseen space a next best view would see, when there is one.
     const perception::Loop* shown = loop;
     for (const auto& l : r.object.loops)
       if (!shown && (l.verdict == perception::LoopVerdict::kUnseenFarSide ||
                      l.verdict == perception::LoopVerdict::kEnclosed))
         shown = &l;
     if (!shown && !r.object.loops.empty()) shown = &r.object.loops.front();
+    const Eigen::Vector3d centre = r.next_view ? r.next_view->target
+                                   : shown     ? shown->centre
+                                               : r.object.sensed->region().center();
     perception::draw_sensed_space_png(
-        *r.object.sensed, shown ? shown->centre : r.object.sensed->region().center(),
-        shown ? shown->points : std::vector<Eigen::Vector3d>{},
+        *r.object.sensed, centre, shown ? shown->points : std::vector<Eigen::Vector3d>{},
         shown ? "loop rank " + std::to_string(shown->rank) + ": " + shown->reason : "no loop",
-        options.out_dir + "/sensed.png");
+        options.out_dir + "/sensed.png", r.next_view ? &*r.next_view : nullptr);
   }
   if (!loop) {
     result["success"] = false;

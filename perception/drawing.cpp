@@ -117,10 +117,11 @@ void draw_object_model_png(const ObjectModel& model, const std::string& path, in
 
 void draw_sensed_space_png(const SensedSpace& space, const Eigen::Vector3d& centre,
                            const std::vector<Eigen::Vector3d>& loop, const std::string& caption,
-                           const std::string& path) {
+                           const std::string& path, const ViewSuggestion* view) {
   if (space.empty()) throw std::invalid_argument("sensed space: nothing to draw (no sensor)");
-  constexpr int kPanel = 320, kGap = 10, kTop = 24, kBottom = 56;
-  cv::Mat img(kTop + kPanel + kBottom, 3 * kPanel + 4 * kGap, CV_8UC3, cv::Scalar(255, 255, 255));
+  constexpr int kPanel = 320, kGap = 10, kTop = 24;
+  const int bottom = view ? 78 : 56;
+  cv::Mat img(kTop + kPanel + bottom, 3 * kPanel + 4 * kGap, CV_8UC3, cv::Scalar(255, 255, 255));
   const Eigen::AlignedBox3d& box = space.region();
   const double side = box.sizes().maxCoeff();
   const double scale = kPanel / side;  // pixels per metre, the same in every panel
@@ -148,13 +149,20 @@ void draw_sensed_space_png(const SensedSpace& space, const Eigen::Vector3d& cent
         out =
             cv::Vec3b(static_cast<uchar>(k[0]), static_cast<uchar>(k[1]), static_cast<uchar>(k[2]));
       }
-    for (std::size_t i = 0; i < loop.size(); ++i) {
-      const auto screen = [&](const Eigen::Vector3d& q) {
-        return cv::Point(x0 + static_cast<int>((q[a] - lo.x()) * scale),
-                         y0 + kPanel - static_cast<int>((q[b] - lo.y()) * scale));
-      };
+    const auto screen = [&](const Eigen::Vector3d& q) {
+      return cv::Point(x0 + static_cast<int>((q[a] - lo.x()) * scale),
+                       y0 + kPanel - static_cast<int>((q[b] - lo.y()) * scale));
+    };
+    for (std::size_t i = 0; i < loop.size(); ++i)
       cv::line(img, screen(loop[i]), screen(loop[(i + 1) % loop.size()]), cv::Scalar(0, 0, 220), 2,
                cv::LINE_AA);
+    if (view) {  // the camera usually stands outside the region: its line clipped to the panel
+      const cv::Rect inside(x0, y0, kPanel, kPanel);
+      cv::Point from = screen(view->position), to = screen(view->target);
+      const cv::Point dot = to;
+      if (cv::clipLine(inside, from, to))
+        cv::line(img, from, to, cv::Scalar(0, 170, 0), 2, cv::LINE_AA);
+      if (inside.contains(dot)) cv::circle(img, dot, 5, cv::Scalar(0, 170, 0), cv::FILLED);
     }
     char buf[96];
     std::snprintf(buf, sizeof buf, names[panel], centre[c]);
@@ -173,6 +181,10 @@ void draw_sensed_space_png(const SensedSpace& space, const Eigen::Vector3d& cent
               cv::Scalar(0, 0, 0), 1, cv::LINE_AA);
   cv::putText(img, caption.substr(0, 150), cv::Point(kGap, kTop + kPanel + 42),
               cv::FONT_HERSHEY_SIMPLEX, 0.42, cv::Scalar(0, 0, 160), 1, cv::LINE_AA);
+  if (view)
+    cv::putText(img, "next best view (green): " + view_text(*view),
+                cv::Point(kGap, kTop + kPanel + 64), cv::FONT_HERSHEY_SIMPLEX, 0.42,
+                cv::Scalar(0, 120, 0), 1, cv::LINE_AA);
   write_png(path, img);
 }
 

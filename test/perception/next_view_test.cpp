@@ -3,9 +3,12 @@
 #include "perception/next_view.hpp"
 
 #include <gtest/gtest.h>
+#include <opencv2/imgcodecs.hpp>
 
 #include "examples/objects.hpp"
 #include "perception/depth_render.hpp"
+#include "perception/drawing.hpp"
+#include "test/support/temp_dir.hpp"
 
 namespace claspplan::perception {
 namespace {
@@ -70,6 +73,29 @@ TEST(NextView, TheCameraStaysAboveTheSupport) {
   ViewOptions o;
   o.allowed = [](const Eigen::Vector3d& p) { return p.x() < 0.0; };
   EXPECT_FALSE(view_into_unknown(space, {{0.14, 0.0, 0.0}}, table, o));
+}
+
+// sensed.png shows the named camera: its line of sight and its target, green, and its entry.
+TEST(NextView, TheSensedPictureShowsTheCamera) {
+  const Scene scene;
+  const SensedSpace space({scene.front}, scene.region);
+  const auto view = view_into_unknown(space, {{0.14, 0.0, 0.0}}, std::nullopt);
+  ASSERT_TRUE(view);
+  test::TempDir dir;
+  const auto green_pixels = [&](const ViewSuggestion* shown) {
+    const std::string path = dir.file("sensed.png");
+    draw_sensed_space_png(space, view->target, {}, "a sphere", path, shown);
+    const cv::Mat img = cv::imread(path, cv::IMREAD_COLOR);
+    int n = 0;
+    for (int y = 0; y < img.rows; ++y)
+      for (int x = 0; x < img.cols; ++x) {
+        const cv::Vec3b c = img.at<cv::Vec3b>(y, x);  // BGR
+        n += c[1] > 100 && c[0] < 80 && c[2] < 80;
+      }
+    return n;
+  };
+  EXPECT_EQ(green_pixels(nullptr), 0);
+  EXPECT_GT(green_pixels(&*view), 300) << "three lines of sight, three dots and the entry";
 }
 
 }  // namespace
