@@ -180,8 +180,9 @@ struct ClaspResult {
   std::vector<Eigen::Vector3d> unseen_voxels;
   double unseen_edge = 0.0;
 
-  /// kNoClasp after a search whose attempts most often ran into unseen space: a camera that
-  /// would see most of the unknown space where the robot met it (also in `reason`).
+  /// kNoClasp after a search whose attempts most often ran into unseen space, or a controller
+  /// run that unseen space stopped: a camera that would see most of the unknown space where the
+  /// robot met it (also in `reason`).
   std::optional<perception::ViewSuggestion> next_view;
 
   ClaspMotion motion;
