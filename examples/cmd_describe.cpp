@@ -105,6 +105,9 @@ void add_describe_command(CLI::App& app, Action& action) {
                   "its subtree)");
   cmd->add_flag("--mesh-hulls", o->draft.mesh_hulls,
                 "collide mesh links as their convex hulls (faster, for large meshes)");
+  cmd->add_flag("--adaptive", o->draft.adaptive,
+                "an underactuated hand: the fingers' mimic joints become joints of their own that "
+                "follow their motor until each finger stops at contact");
   cmd->add_option("--hand-root", o->draft.hand_root,
                   "the hand's root link (default: the first link with two or more branches of "
                   "moving joints)");

@@ -133,6 +133,7 @@ int run_robot(const RobotOptions& o) {
                         {"hand", j.hand},
                         {"open", j.open},
                         {"closing", j.closing}});
+      if (j.follows >= 0) joints.back()["follows"] = m.joints[j.follows].name;
     }
     nlohmann::json rotation = nlohmann::json::array();
     for (int r = 0; r < 3; ++r)
@@ -207,8 +208,9 @@ int run_robot(const RobotOptions& o) {
   std::printf("  %-3s %-20s %-4s %10s %10s %10s\n", "#", "joint", "part", "lower", "upper", "q");
   for (int i = 0; i < m.dof(); ++i) {
     const auto& j = m.joints[i];
-    std::printf("  %-3d %-20s %-4s %10.4f %10.4f %10.4f\n", i + 1, j.name.c_str(),
-                j.hand ? "hand" : "arm", j.lower, j.upper, q[i]);
+    std::printf("  %-3d %-20s %-4s %10.4f %10.4f %10.4f%s\n", i + 1, j.name.c_str(),
+                j.hand ? "hand" : "arm", j.lower, j.upper, q[i],
+                j.follows >= 0 ? ("  adaptive: follows " + m.joints[j.follows].name).c_str() : "");
   }
   if (start) {
     std::printf(

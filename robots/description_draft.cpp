@@ -232,6 +232,38 @@ Draft topology(const Tree& t, const DraftOptions& o, int root) {
   return d;
 }
 
+// --adaptive: each mimic joint of a finger becomes a hand joint of its own (an adaptive joint)
+// that closes as its driver closes it, and a finger's joints are then its own joints.
+void make_adaptive(Draft& d, const Tree& t, const RobotModel& m,
+                   std::vector<std::string>& guesses) {
+  int added = 0;
+  for (FingerDraft& f : d.fingers) {
+    f.joints.clear();
+    for (int l : f.chain) {
+      if (!t.moves(l)) continue;
+      const urdf::Joint* j = t.joint(l);
+      const std::string driver = t.driver(l);
+      if (driver.empty()) continue;
+      if (j->mimic) {
+        const auto lead = std::find_if(d.hand.begin(), d.hand.end(),
+                                       [&](const JointDraft& h) { return h.name == driver; });
+        if (lead == d.hand.end()) continue;  // a mimic of an arm joint stays one
+        JointDraft a = joint_draft(t, l);
+        // Its value is multiplier × the driver's (the loaded model's chain product).
+        const double rate = m.links[m.link_index(t.m.links[l].name)].multiplier;
+        a.closing = rate > 0 ? lead->closing : -lead->closing;
+        a.follows = driver;
+        d.hand.push_back(a);
+        ++added;
+      }
+      f.joints.push_back(j->name);
+    }
+  }
+  guesses.push_back("adaptive: " + std::to_string(added) +
+                    " mimic joints of the fingers in q, each closing until its own finger stops "
+                    "(--adaptive)");
+}
+
 // A closed hand should enclose a 3 cm bar (a typical handle) with 1 cm to spare.
 constexpr double kWantedAperture = 0.04;
 
@@ -340,6 +372,7 @@ DescriptionDraft draft_description(const DraftOptions& o) {
     d.curves.push_back({"draft_" + std::to_string(f + 1),
                         {d.fingers[f].tip, {d.base_link}, d.fingers[f + 1].tip}});
   shape_hand(d, load_draft(d, o), out.guesses);
+  if (o.adaptive) make_adaptive(d, t, load_draft(d, o), out.guesses);
   choose_goal(d, o, out.guesses);
   allow_pairs(d, o, out);
   out.yaml = to_yaml(d);

@@ -26,6 +26,9 @@ struct DraftOptions {
   std::string hand_urdf_root;
   std::vector<std::string> replaces;  ///< the arm's own gripper links, left out for the hand
   bool mesh_hulls = false;            ///< collide meshes as their convex hulls
+  /// The fingers' mimic joints as adaptive joints (Joint::follows): an underactuated hand, whose
+  /// fingers follow their motor until each stops on its own at contact.
+  bool adaptive = false;
   /// The arm's home (the vendor's): written as arm.home, and link pairs in contact there are
   /// allowed. Default: every joint at 0 (within its limits), and nothing is allowed for it.
   std::vector<double> home;

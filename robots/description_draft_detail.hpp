@@ -16,6 +16,7 @@ struct JointDraft {
   std::string name;
   double lower = 0.0, upper = 0.0, open = 0.0;
   int closing = 0;
+  std::string follows;  // an adaptive joint: the joint it follows (and opens with)
 };
 
 struct CurvePoint {

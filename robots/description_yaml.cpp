@@ -61,9 +61,14 @@ std::string to_yaml(const Draft& d) {
   y << "  # guessed: open at 0 (within the limits); closing moves each fingertip toward the\n"
        "  # opposing finger (+1 / -1), 0 for a joint that moves it sideways (an abduction)\n"
        "  joints:\n";
-  for (const auto& j : d.hand)
-    y << "    - {name: " << j.name << ", open: " << draft_number(j.open, true)
-      << ", closing: " << j.closing << "}\n";
+  for (const auto& j : d.hand) {
+    if (j.follows.empty())
+      y << "    - {name: " << j.name << ", open: " << draft_number(j.open, true)
+        << ", closing: " << j.closing << "}\n";
+    else
+      y << "    - {name: " << j.name << ", closing: " << j.closing << "}  # adaptive: follows "
+        << j.follows << "\n";
+  }
   y << "  fingers:  # guessed: the thumb is the finger set apart from the others\n";
   for (const auto& f : d.fingers) {
     y << "    - {name: " << f.name << (f.thumb ? ", thumb: true" : "") << ", joints: [";

@@ -4,6 +4,7 @@
 // linking goal and the allowed collision pairs. build_model() runs the steps in this order.
 #include <algorithm>
 #include <cmath>
+#include <functional>
 #include <map>
 #include <memory>
 #include <sstream>
@@ -107,11 +108,16 @@ void add_actuated_joints(ModelBuild& b) {
       b.q_nodes[i].fail("joint '" + m.links[li].joint + "' is listed twice");
     b.q_of_link[li] = static_cast<int>(i);
     const urdf::Joint& uj = b.urdf_joint(li);
-    if (uj.mimic) b.q_nodes[i].fail("joint '" + uj.name + "' is a mimic joint and cannot be in q");
     Joint j;
     j.name = uj.name;
     j.link = li;
     j.hand = static_cast<int>(i) >= m.arm_dof;
+    // A mimic joint in q is an adaptive finger joint (resolve_adaptive_joints): only in the hand.
+    if (uj.mimic && !j.hand)
+      b.q_nodes[i].fail("joint '" + uj.name + "' is a mimic joint and cannot be an arm joint");
+    if (uj.mimic && b.hand_specs[i - m.arm_dof].node.has("open"))
+      b.hand_specs[i - m.arm_dof].node["open"].fail(
+          "'" + uj.name + "' is a mimic joint (an adaptive joint): it opens with its leader");
     if (uj.type == urdf::Joint::CONTINUOUS) {
       j.lower = -0.5 * kContinuousRange;
       j.upper = 0.5 * kContinuousRange;
@@ -132,6 +138,7 @@ void add_actuated_joints(ModelBuild& b) {
     Joint& j = m.joints[m.arm_dof + i];
     j.open = b.hand_specs[i].open;
     j.closing = b.hand_specs[i].closing;
+    if (b.urdf_joint(j.link).mimic) continue;  // opens with its leader
     if (j.open < j.lower - 1e-9 || j.open > j.upper + 1e-9) {
       std::ostringstream s;
       s << "open value " << j.open << " of '" << j.name << "' is outside its limits [" << j.lower
@@ -235,11 +242,58 @@ void resolve_joints(ModelBuild& b) {
   for (size_t i = 1; i < b.m.links.size(); ++i) resolve_joint(b, static_cast<int>(i), state);
 }
 
-// Jacobian support and the hand flag.
+// Adaptive joints (mimic joints listed in hand.joints): each follows the root of its mimic chain
+// that is not adaptive itself, and opens with it.
+void resolve_adaptive_joints(ModelBuild& b) {
+  RobotModel& m = b.m;
+  std::map<int, int> state;  // q index: 1 in progress, 2 done
+  const std::function<void(int)> resolve = [&](int i) {
+    Joint& j = m.joints[i];
+    const urdf::Joint& uj = b.urdf_joint(j.link);
+    if (!uj.mimic || state[i] == 2) return;
+    const YamlField& node = b.q_nodes[i];
+    if (state[i] == 1) node.fail("adaptive joints mimic each other in a cycle at '" + j.name + "'");
+    state[i] = 1;
+    const Link& leader = m.links[b.urdf.link_by_joint.at(uj.mimic->joint_name)];
+    if (leader.q_index < 0 || !m.joints[leader.q_index].hand)
+      node.fail("'" + j.name + "' (an adaptive joint) must follow a hand joint in q, not '" +
+                uj.mimic->joint_name + "'");
+    // value = M (multiplier q[lead] + offset) + O, with q[lead] itself adaptive in turn.
+    int lead = leader.q_index;
+    double a = uj.mimic->multiplier * leader.multiplier;
+    double c = uj.mimic->multiplier * leader.offset + uj.mimic->offset;
+    resolve(lead);
+    if (m.joints[lead].follows >= 0) {
+      c += a * m.joints[lead].follow_offset;
+      a *= m.joints[lead].follow_multiplier;
+      lead = m.joints[lead].follows;
+    }
+    j.follows = lead;
+    j.follow_multiplier = a;
+    j.follow_offset = c;
+    j.open = a * m.joints[lead].open + c;
+    if (j.open < j.lower - 1e-9 || j.open > j.upper + 1e-9) {
+      std::ostringstream s;
+      s << "'" << j.name << "' (an adaptive joint) opens with '" << m.joints[lead].name << "' at "
+        << j.open << ", outside its limits [" << j.lower << ", " << j.upper << "]";
+      node.fail(s.str());
+    }
+    m.home[i] = j.open;
+    state[i] = 2;
+  };
+  for (int i = m.arm_dof; i < m.dof(); ++i) resolve(i);
+}
+
+// Jacobian support, Jacobian columns and the hand flag.
 void mark_support_and_hand(ModelBuild& b) {
   RobotModel& m = b.m;
   for (size_t i = 0; i < m.links.size(); ++i) {
     Link& l = m.links[i];
+    if (l.q_index >= 0) {
+      const Joint& j = m.joints[l.q_index];
+      l.column = j.follows >= 0 ? j.follows : l.q_index;
+      l.column_multiplier = l.multiplier * (j.follows >= 0 ? j.follow_multiplier : 1.0);
+    }
     if (l.parent >= 0) {
       l.support = m.links[l.parent].support;
       l.hand = m.links[l.parent].hand;
@@ -416,6 +470,7 @@ RobotModel build_model(const YamlField& root, const urdf::ModelInterface& urdf,
   read_home(b, arm);
   read_held(b, hand);
   resolve_joints(b);
+  resolve_adaptive_joints(b);
   mark_support_and_hand(b);
   read_fingers(b, hand);
   read_curves(b, hand);

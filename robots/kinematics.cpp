@@ -60,9 +60,9 @@ void add_point_columns(const RobotModel& model, const RobotData& data, int link,
     const Link& l = model.links[a];
     const Eigen::Vector3d& axis = data.joint_axes[a];
     if (l.type == JointType::kRevolute) {
-      J.col(l.q_index) += l.multiplier * axis.cross(p - data.link_poses[a].translation());
+      J.col(l.column) += l.column_multiplier * axis.cross(p - data.link_poses[a].translation());
     } else {
-      J.col(l.q_index) += l.multiplier * axis;
+      J.col(l.column) += l.column_multiplier * axis;
     }
   }
 }
@@ -82,7 +82,7 @@ Eigen::Matrix<double, 3, Eigen::Dynamic> angular_jacobian(const RobotModel& mode
   Eigen::Matrix<double, 3, Eigen::Dynamic> J = Eigen::MatrixXd::Zero(3, model.dof());
   for (int a : model.links[link].support) {
     const Link& l = model.links[a];
-    if (l.type == JointType::kRevolute) J.col(l.q_index) += l.multiplier * data.joint_axes[a];
+    if (l.type == JointType::kRevolute) J.col(l.column) += l.column_multiplier * data.joint_axes[a];
   }
   return J;
 }

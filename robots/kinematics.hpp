@@ -2,7 +2,8 @@
 // (Pinocchio style): call forward_kinematics() once per q, then any number of Jacobian queries.
 //
 // Jacobians are with respect to q (dof() columns, arm joints then hand joints). Mimic joints add
-// multiplier × their motion to the leader's column (chain rule); held joints add nothing.
+// multiplier × their motion to the leader's column (chain rule), and so do adaptive joints, which
+// planned motions move with their leader (RobotModel::couple); held joints add nothing.
 #pragma once
 
 #include <vector>

@@ -127,6 +127,17 @@ bool RobotModel::within_limits(const Eigen::VectorXd& q, double tolerance) const
   return true;
 }
 
+Eigen::VectorXd RobotModel::couple(const Eigen::VectorXd& q) const {
+  Eigen::VectorXd c = q;
+  for (int i = arm_dof; i < dof() && i < q.size(); ++i) {
+    const Joint& j = joints[i];
+    if (j.follows < 0) continue;
+    const double v = j.follow_multiplier * q[j.follows] + j.follow_offset;
+    c[i] = std::min(std::max(v, j.lower), j.upper);
+  }
+  return c;
+}
+
 Eigen::VectorXd RobotModel::open_hand(const Eigen::VectorXd& q) const {
   Eigen::VectorXd r = q;
   for (int i = arm_dof; i < dof(); ++i) r[i] = joints[i].open;

@@ -8,7 +8,8 @@
 //
 // The actuated joint vector q: the arm joints first (hand description `arm.joints`, in that order),
 // then the hand joints (`hand.joints`, in that order). Mimic joints (URDF <mimic>) follow their
-// leader and joints listed under `hand.held` stay at their value; neither is in q.
+// leader and joints listed under `hand.held` stay at their value; neither is in q, except a mimic
+// listed in `hand.joints`: an adaptive joint (Joint::follows) of an underactuated hand.
 #pragma once
 
 #include <memory>
@@ -62,6 +63,11 @@ struct Link {
   int q_index = -1;
   double multiplier = 1.0;
   double offset = 0.0;
+  /// The entry of q whose Jacobian column this joint's motion is credited to, and its rate: q_index
+  /// and multiplier, or for an adaptive joint (Joint::follows) its leader's, since planned motions
+  /// move it with its leader.
+  int column = -1;
+  double column_multiplier = 1.0;
   /// Links on the path from the root to this link (this one included) whose joint depends on q,
   /// root side first: the columns of this link's Jacobians.
   std::vector<int> support;
@@ -82,6 +88,13 @@ struct Joint {
   int link = -1;                    ///< the child link of this joint
   double open = 0.0;  ///< hand: value in the open pre-shape; arm: value in the home pose
   int closing = 0;    ///< hand: +1 / -1 the direction that closes the finger, 0 none; arm: 0
+  /// An adaptive joint (a URDF mimic joint listed in `hand.joints`: an underactuated finger) is an
+  /// entry of q that follows the entry `follows` (follow_multiplier × it + follow_offset, within
+  /// its own limits) in every planned motion, but stops on its own when the fingers close on the
+  /// object. -1 for every other joint.
+  int follows = -1;
+  double follow_multiplier = 1.0;
+  double follow_offset = 0.0;
 };
 
 /// A point fixed to a link: `point` in the link's frame.
@@ -157,6 +170,9 @@ struct RobotModel {
   Eigen::VectorXd clamp(const Eigen::VectorXd& q) const;
   /// True when q has dof() finite entries within the limits (+ tolerance).
   bool within_limits(const Eigen::VectorXd& q, double tolerance = 1e-9) const;
+  /// q with every adaptive joint set from its leader (Joint::follows): the hand of a planned
+  /// motion. The identity for a robot without adaptive joints.
+  Eigen::VectorXd couple(const Eigen::VectorXd& q) const;
   /// q with its hand part replaced by the open pre-shape.
   Eigen::VectorXd open_hand(const Eigen::VectorXd& q) const;
   /// Joint values for `q` given as a shorter prefix: the rest from `home`. Throws

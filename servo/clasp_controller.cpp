@@ -109,7 +109,7 @@ Eigen::VectorXd ClaspController::step(const Eigen::VectorXd& q0, const Eigen::Ve
     }
     if (!changed) break;
   }
-  return q1.cwiseMax(lower).cwiseMin(upper);
+  return model_.couple(q1.cwiseMax(lower).cwiseMin(upper));
 }
 
 }  // namespace claspplan::servo

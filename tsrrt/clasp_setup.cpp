@@ -303,6 +303,15 @@ ClaspResult plan_clasp(const ClaspRequest& request) {
   ClaspResult r;
   r.start = model.complete_q(
       std::vector<double>(request.start.data(), request.start.data() + request.start.size()));
+  const Eigen::VectorXd coupled = model.couple(r.start);  // an open hand, before any contact
+  for (int j = 0; j < model.dof(); ++j) {
+    if (std::abs(coupled[j] - r.start[j]) > 1e-9) {
+      throw InputError("start: '" + model.joints[j].name +
+                       "' is an adaptive joint: it starts where '" +
+                       model.joints[model.joints[j].follows].name + "' puts it (" +
+                       std::to_string(coupled[j]) + ")");
+    }
+  }
   // Loops are chosen for this hand: holes its fingers pass, bars its closed hand encloses.
   r.hand = robots::hand_size(model);
   perception.finger_thickness = r.hand.finger_thickness;

@@ -147,24 +147,43 @@ TEST(DescribeCommand, TheCommittedDraftsClaspThePurse) {
 
 // A public hand of one motor: Romeo's left hand (every finger joint mimics LHand, closed at 0),
 // cut from the humanoid's unmodified URDF below its wrist and mounted on the Panda. The draft finds
-// its four fingers through their mimic joints and opens the motor at its upper limit; the hand is
-// small (2 cm inside when closed), so the purse's 2.4 cm strap is refused for that reason.
+// its four fingers through their mimic joints and opens the motor at its upper limit; with
+// --adaptive the mimic joints are adaptive joints, so that each finger stops on its own, and its
+// 8 mm wire ring is verified. The hand is small (2 cm inside when closed), so the purse's 2.4 cm
+// strap is refused for that reason.
 TEST(DescribeCommand, DraftsAOneMotorHandCutFromAHumanoid) {
   TempDir dir;
   const std::string urdfs = kRobots + "/example-robot-data/robots/";
   const std::string out = dir.file("panda_romeo.yaml");
-  const CliResult d = run_cli(
-      {"describe", urdfs + "panda_description/urdf/panda.urdf", "--hand-urdf",
-       urdfs + "romeo_description/urdf/romeo.urdf", "--hand-urdf-root", "l_wrist", "--mount",
-       "panda_link8", "--mount-rpy", "0,-1.5707963,0", "--replaces", "panda_hand", "--samples",
-       "200", "--home=0,-0.785398,0,-2.356194,0,1.570796,0.785398", "-o", out, "--json"});
+  const CliResult d =
+      run_cli({"describe", urdfs + "panda_description/urdf/panda.urdf", "--hand-urdf",
+               urdfs + "romeo_description/urdf/romeo.urdf", "--hand-urdf-root", "l_wrist",
+               "--mount", "panda_link8", "--mount-rpy", "0,-1.5707963,0", "--replaces",
+               "panda_hand", "--adaptive", "--samples", "200",
+               "--home=0,-0.785398,0,-2.356194,0,1.570796,0.785398", "-o", out, "--json"});
   ASSERT_EQ(d.exit_code, 0) << d.err;
   const auto j = d.json();
   EXPECT_EQ(j["arm_dof"].get<int>(), 7);
-  EXPECT_EQ(j["hand_dof"].get<int>(), 1);
+  EXPECT_EQ(j["hand_dof"].get<int>(), 12);  // LHand and the 11 joints that mimic it
   ASSERT_EQ(j["fingers"].size(), 4u);
   const std::string yaml = slurp(out);
   EXPECT_NE(yaml.find("{name: LHand, open: 1, closing: -1}"), std::string::npos) << yaml;
+  // The thumb's base turns against the motor (multiplier -1), so it closes the other way.
+  EXPECT_NE(yaml.find("{name: LThumb1, closing: 1}  # adaptive: follows LHand"), std::string::npos)
+      << yaml;
+  const CliResult ring =
+      run_cli({"run", kRobots + "/scenarios/romeo/wire_ring.yaml", "--robot", out, "--seed", "1",
+               "--no-pictures", "--out", dir.file("ring"), "--json"});
+  ASSERT_EQ(ring.exit_code, 0) << ring.out << ring.err;
+  EXPECT_TRUE(ring.json()["verified"].get<bool>());
+  // A start with a finger off its motor (LFinger21 half closed, LHand open) is no open hand.
+  const std::string off = dir.write(
+      "off.yaml", slurp(kRobots + "/scenarios/romeo/wire_ring.yaml") +
+                      "start: [0, -0.785398, 0, -2.356194, 0, 1.570796, 0.785398, 1, 0.5]\n");
+  const CliResult start = run_cli(
+      {"run", off, "--robot", out, "--no-pictures", "--out", dir.file("off"), "--max-cycles", "5"});
+  EXPECT_EQ(start.exit_code, 2) << start.out << start.err;
+  EXPECT_NE(start.err.find("'LFinger21' is an adaptive joint"), std::string::npos) << start.err;
   EXPECT_NE(yaml.find("root: l_wrist"), std::string::npos) << yaml;
   EXPECT_LT(j["hand"]["widest_bar"].get<double>(), 0.02);
   const CliResult purse =

@@ -99,6 +99,17 @@ std::string robot_urdf(const std::vector<Finger>& fingers, bool overlap = false)
   return u + "</robot>\n";
 }
 
+// The arm and palm with three fingers that all follow a_1, closed at 0; the thumb c stands 12 cm
+// across, so that the fist at 0 does not cross the fingers.
+std::string one_motor_robot_urdf() {
+  std::string urdf = robot_urdf({});
+  std::string fingers;
+  for (const Finger& f :
+       {Finger{"a", 0.0, 0.02, 1}, Finger{"b", 0.0, -0.02, 1}, Finger{"c", 0.12, 0.0, -1}})
+    fingers += coupled_finger(f, "a_1");
+  return urdf.insert(urdf.rfind("</robot>"), fingers);
+}
+
 // Two fingers side by side and one facing them across the palm.
 std::vector<Finger> three_fingers(bool mimic = false) {
   return {{"a", 0.0, 0.02, 1, false}, {"b", 0.0, -0.02, 1, mimic}, {"c", 0.06, 0.0, -1, false}};
@@ -315,15 +326,8 @@ TEST(DescriptionDraft, AHandFromItsOwnUrdfIsMountedAndTheArmsGripperLeftOut) {
 // tips and v_fwd are read at the open hand, not at the fist the joints' zero makes.
 TEST(DescriptionDraft, AOneMotorHandClosedAtZeroIsCutFromAWholeRobot) {
   Folder dir;
-  std::string whole = robot_urdf({});  // an arm and a palm; its fingers follow a_1
-  std::string fingers;
-  // The thumb c stands 12 cm across: the fist at 0 does not cross the fingers.
-  for (const Finger& f :
-       {Finger{"a", 0.0, 0.02, 1}, Finger{"b", 0.0, -0.02, 1}, Finger{"c", 0.12, 0.0, -1}})
-    fingers += coupled_finger(f, "a_1");
-  whole.insert(whole.rfind("</robot>"), fingers);
   DraftOptions o;
-  o.hand_urdf = dir.write("whole.urdf", whole);
+  o.hand_urdf = dir.write("whole.urdf", one_motor_robot_urdf());
   o.hand_urdf_root = "palm";
   o.mount = "wrist";
   o.mount_xyz = {0, 0, 0.11};
@@ -354,6 +358,30 @@ TEST(DescriptionDraft, AOneMotorHandClosedAtZeroIsCutFromAWholeRobot) {
   // A root that is not in the URDF is refused.
   o.hand_urdf_root = "no_such_link";
   EXPECT_THROW(draft(dir, robot_urdf({}), o), InputError);
+}
+
+// --adaptive: the same kind of hand, its fingers' mimic joints as joints of their own that follow
+// the motor and close the way it closes them.
+TEST(DescriptionDraft, AnAdaptiveHandsMimicJointsAreJointsOfTheirOwn) {
+  Folder dir;
+  DraftOptions o;
+  o.hand_root = "palm";
+  o.adaptive = true;
+  const DescriptionDraft d = draft(dir, one_motor_robot_urdf(), o);
+  const RobotModel& m = d.model;
+  ASSERT_EQ(m.hand_dof, 6);  // a_1 and the five joints that mimic it
+  const int motor = m.joint_index("a_1");
+  for (int j = m.arm_dof; j < m.dof(); ++j) {
+    if (j == motor) continue;
+    EXPECT_EQ(m.joints[j].follows, motor) << m.joints[j].name;
+    EXPECT_EQ(m.joints[j].closing, m.joints[motor].closing) << m.joints[j].name;
+    EXPECT_EQ(m.home[j], m.home[motor]) << m.joints[j].name;
+  }
+  for (const auto& f : m.fingers) {  // each finger closes on its own joints
+    ASSERT_EQ(f.joints.size(), 2u) << f.name;
+    EXPECT_EQ(m.joints[f.joints[0]].link, m.link_index(m.links[f.links[0]].name)) << f.name;
+  }
+  EXPECT_NE(d.yaml.find("# adaptive: follows a_1"), std::string::npos) << d.yaml;
 }
 
 }  // namespace

@@ -65,6 +65,18 @@ inline std::string capsule_hand_urdf(const std::string& thumb, bool pointing_dow
          finger("finger", 1) + thumb + "</robot>";
 }
 
+// The hand's URDF with one motor pair: thumb_1 and thumb_2 mimic finger_1 and finger_2 (× −1), as
+// Romeo's fingers all follow LHand.
+inline std::string one_motor_hand_urdf() {
+  std::string thumb = finger("thumb", -1);
+  for (const char* j : {"thumb_1", "thumb_2"}) {
+    const std::size_t at = thumb.find("</joint>", thumb.find("name=\"" + std::string(j) + "\""));
+    thumb.insert(at,
+                 "<mimic joint=\"finger_" + std::string(j).substr(6) + "\" multiplier=\"-1\"/>");
+  }
+  return capsule_hand_urdf(thumb);
+}
+
 // The hand's description: `joints` its hand joints' entries (YAML flow maps, one per line), the
 // thumb moved by `thumb_joints` ("[thumb_1, thumb_2]").
 inline std::string capsule_hand_yaml(const std::string& name, const std::string& joints,

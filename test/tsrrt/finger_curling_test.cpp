@@ -58,13 +58,7 @@ TEST(FingerClosing, ABlockedBaseLinkStopsItsJointWhileTheTipCurlsOn) {
 // all follow LHand), and both fingers list the motors. A cube in the thumb's path must stop the
 // motors when the finger steps them, not only when the thumb does.
 TEST(FingerClosing, AMotorSharedThroughMimicJointsStopsForEveryLinkItMoves) {
-  std::string thumb = finger("thumb", -1);
-  for (const char* j : {"thumb_1", "thumb_2"}) {
-    const std::size_t at = thumb.find("</joint>", thumb.find("name=\"" + std::string(j) + "\""));
-    thumb.insert(at,
-                 "<mimic joint=\"finger_" + std::string(j).substr(6) + "\" multiplier=\"-1\"/>");
-  }
-  const std::string urdf = capsule_hand_urdf(thumb);
+  const std::string urdf = one_motor_hand_urdf();
   const std::string yaml = capsule_hand_yaml("one_motor",
                                              "    - {name: finger_1, open: 0.4, closing: -1}\n"
                                              "    - {name: finger_2, open: 0.0, closing: -1}\n",

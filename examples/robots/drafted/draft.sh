@@ -21,10 +21,11 @@ out=examples/robots/drafted
   --replaces j2s6s200_link_finger_1 --replaces j2s6s200_link_finger_2 --mesh-hulls \
   --home 4.80,2.92,1.0,4.2,1.44,1.32 -o $out/jaco_allegro.yaml
 # Romeo's left hand (one motor, LHand; every finger joint mimics it; closed at 0), cut from the
-# humanoid's URDF below its wrist and turned so that its fingers point along the flange's z.
+# humanoid's URDF below its wrist and turned so that its fingers point along the flange's z;
+# --adaptive: its fingers follow the motor until each stops on its own at contact.
 "$claspplan" describe $robots/panda_description/urdf/panda.urdf --name panda_romeo \
   --hand-urdf $robots/romeo_description/urdf/romeo.urdf --hand-urdf-root l_wrist \
-  --mount panda_link8 --mount-rpy 0,-1.5707963,0 --replaces panda_hand \
+  --mount panda_link8 --mount-rpy 0,-1.5707963,0 --replaces panda_hand --adaptive \
   --home=0,-0.785398,0,-2.356194,0,1.570796,0.785398 -o $out/panda_romeo.yaml
 # SCHUNK's SVH hand (9 motors, 11 joints that <mimic> them, mesh and box collisions) is fetched,
 # not shipped (GPL-3.0): sh examples/robots/fetch_svh.sh. Its fingers already point along the
