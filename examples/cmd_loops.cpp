@@ -91,6 +91,7 @@ nlohmann::json loops_json(const LoopsOptions& o, const perception::ObjectModel& 
                         {"persistence_d", model.persistence_d},
                         {"d", model.d},
                         {"d_rule", model.d_rule},
+                        {"objects", model.objects},
                         {"mean_spacing", model.mean_spacing},
                         {"points", static_cast<int>(model.cloud.size())},
                         {"input_points", model.input_points},

@@ -12,6 +12,8 @@
 #include <pcl/point_types.h>
 #include <pcl/sample_consensus/method_types.h>
 #include <pcl/sample_consensus/model_types.h>
+#include <pcl/search/kdtree.h>
+#include <pcl/segmentation/extract_clusters.h>
 #include <pcl/segmentation/sac_segmentation.h>
 
 #include "core/parallel.hpp"
@@ -361,26 +363,61 @@ class FarthestPoints {
 }  // namespace
 
 std::vector<int> farthest_point_indices(const PointCloud& cloud, int count, std::uint64_t seed) {
+  return farthest_point_indices(cloud, count, seed, {}, count);
+}
+
+std::vector<int> farthest_point_indices(const PointCloud& cloud, int count, std::uint64_t seed,
+                                        const std::vector<int>& labels, int limit) {
   const int m = static_cast<int>(cloud.size());
+  if (!labels.empty() && labels.size() != cloud.size())
+    throw std::invalid_argument("farthest_point_indices: one label per point");
   std::vector<int> picked;
   if (m == 0 || count <= 0) return picked;
-  if (count >= m) {
+  limit = std::max(limit, count);
+  if (limit >= m) {
     picked.resize(m);
     std::iota(picked.begin(), picked.end(), 0);
     return picked;
   }
+  std::vector<int> per_object(
+      labels.empty() ? 1 : *std::max_element(labels.begin(), labels.end()) + 1, 0);
+  int most = 0;
+  const auto take = [&](int i) {
+    picked.push_back(i);
+    const int object = labels.empty() ? 0 : labels[i];
+    if (object >= 0) most = std::max(most, ++per_object[object]);
+  };
   std::mt19937_64 rng(seed);
   const int start = static_cast<int>(uniform_index(rng(), m));
   FarthestPoints state(cloud, start);
-  picked.reserve(count);
-  picked.push_back(start);  // its value is already 0
-  while (static_cast<int>(picked.size()) < count) {
+  picked.reserve(limit);
+  take(start);  // its value is already 0
+  while (most < count && static_cast<int>(picked.size()) < limit) {
     const auto [d2, i] = state.top();
     if (d2 <= 0.0) break;  // only duplicates of picked points remain
-    picked.push_back(i);
+    take(i);
     state.pick(i);
   }
   return picked;
+}
+
+std::vector<int> object_labels(const PointCloud& cloud, double gap, double min_share) {
+  if (!(gap > 0) || !std::isfinite(gap))
+    throw std::invalid_argument("object_labels: gap must be > 0");
+  std::vector<int> labels(cloud.size(), -1);
+  if (cloud.empty()) return labels;
+  auto tree = std::make_shared<pcl::search::KdTree<pcl::PointXYZ>>();
+  pcl::EuclideanClusterExtraction<pcl::PointXYZ> extract;
+  extract.setClusterTolerance(gap);
+  extract.setMinClusterSize(std::max(1, static_cast<int>(std::ceil(min_share * cloud.size()))));
+  extract.setMaxClusterSize(static_cast<int>(cloud.size()));
+  extract.setSearchMethod(tree);
+  extract.setInputCloud(to_pcl(cloud));
+  std::vector<pcl::PointIndices> clusters;
+  extract.extract(clusters);  // largest first
+  for (std::size_t c = 0; c < clusters.size(); ++c)
+    for (int i : clusters[c].indices) labels[i] = static_cast<int>(c);
+  return labels;
 }
 
 PointCloud farthest_point_sample(const PointCloud& cloud, int count, std::uint64_t seed) {

@@ -73,6 +73,17 @@ PointCloud even_subset(const PointCloud& cloud, int count, std::uint64_t seed);
 std::vector<int> farthest_point_indices(const PointCloud& cloud, int count, std::uint64_t seed);
 PointCloud farthest_point_sample(const PointCloud& cloud, int count, std::uint64_t seed);
 
+/// Farthest-point sampling of several objects at once (`labels`: one per point, >= 0; points
+/// labelled -1 are sampled but do not count): picks until the object with the most picks holds
+/// `count`, or `limit` points are picked, or only duplicates remain. Each object then keeps the
+/// spacing that `count` points give the largest, however many other objects share the crop.
+std::vector<int> farthest_point_indices(const PointCloud& cloud, int count, std::uint64_t seed,
+                                        const std::vector<int>& labels, int limit);
+
+/// The objects of a cloud: PCL Euclidean clusters of points less than `gap` apart, those of at
+/// least `min_share` of the points labelled 0, 1, ... (largest first), the rest -1.
+std::vector<int> object_labels(const PointCloud& cloud, double gap, double min_share);
+
 /// Mean distance from each point to its nearest other point. Throws for fewer than 2 points.
 double mean_spacing(const PointCloud& cloud);
 

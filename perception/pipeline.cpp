@@ -144,6 +144,7 @@ namespace {
 
 struct Prepared {
   PointCloud cloud;
+  PointCloud pool;  // the points farthest-point sampling chose the cloud from
   std::vector<DepthView> views;
   int input_points = 0, plane_points = 0, outliers = 0;
   std::optional<Eigen::Vector4d> plane;
@@ -239,8 +240,8 @@ Prepared prepare(const PerceptionInputs& in, const PerceptionOptions& o) {
   if (all.size() < 4)
     throw InputError("fewer than 4 distinct points (" + std::to_string(all.size()) +
                      ") after filtering: nothing to triangulate");
-  all = random_subset(all, budget, o.seed + 1);
-  r.cloud = spatial_order(farthest_point_sample(all, n, o.seed + 2));
+  r.pool = random_subset(all, budget, o.seed + 1);
+  r.cloud = spatial_order(farthest_point_sample(r.pool, n, o.seed + 2));
   return r;
 }
 
@@ -253,22 +254,12 @@ PointCloud object_points(const PerceptionInputs& in, const PerceptionOptions& o,
   return std::move(r.cloud);
 }
 
-ObjectModel build_object_model(const PerceptionInputs& in, const PerceptionOptions& o) {
-  using Clock = std::chrono::steady_clock;
-  const auto t_start = Clock::now();
-  ObjectModel m;
-  auto t = Clock::now();
-  Prepared r = prepare(in, o);
-  m.timings.preprocess = seconds_since(t);
-  stop_point(o.stop);
-  m.cloud = std::move(r.cloud);
-  m.views = std::move(r.views);
-  m.input_points = r.input_points;
-  m.plane_points_removed = r.plane_points;
-  m.support_plane = r.plane;
-  m.outliers_removed = r.outliers;
+namespace {
 
-  t = Clock::now();
+// Steps 3-6 on m.cloud: d, K_d, the stable loops, the sensed space, the ranking and the targets.
+void loops_of_cloud(ObjectModel& m, const PerceptionOptions& o, bool sensor_origin_missing) {
+  using Clock = std::chrono::steady_clock;
+  auto t = Clock::now();
   m.mean_spacing = mean_spacing(m.cloud);
   if (o.d > 0) {
     m.d = o.d;
@@ -325,7 +316,7 @@ ObjectModel build_object_model(const PerceptionInputs& in, const PerceptionOptio
   if (!m.views.empty())
     m.sensed = std::make_shared<const SensedSpace>(
         m.views, object_region(bounds(m.cloud), o.sensed.margin), o.sensed);
-  m.sensor_origin_missing = !in.clouds.empty() && !m.sensed;
+  m.sensor_origin_missing = sensor_origin_missing && !m.sensed;
   m.timings.sensed = seconds_since(t);
 
   t = Clock::now();
@@ -349,6 +340,62 @@ ObjectModel build_object_model(const PerceptionInputs& in, const PerceptionOptio
   rank_loops(m.loops, m.cloud, m.views, ro);
   if (const Loop* best = m.best()) m.targets = clasp_targets(*best, o.targets, o.closed_aperture);
   m.timings.ranking = seconds_since(t);
+}
+
+// A model of the prepared inputs (steps 1-2) before its points and loops.
+ObjectModel model_of_inputs(const Prepared& r) {
+  ObjectModel m;
+  m.views = r.views;
+  m.input_points = r.input_points;
+  m.plane_points_removed = r.plane_points;
+  m.support_plane = r.plane;
+  m.outliers_removed = r.outliers;
+  return m;
+}
+
+// Objects closer than this (or 4 spacings of the pool) are one (m); an object holds at least this
+// share of the points.
+constexpr double kObjectGap = 0.02;
+constexpr double kObjectShare = 0.1;
+
+}  // namespace
+
+ObjectModel build_object_model(const PerceptionInputs& in, const PerceptionOptions& o) {
+  using Clock = std::chrono::steady_clock;
+  const auto t_start = Clock::now();
+  Prepared r = prepare(in, o);
+  ObjectModel m = model_of_inputs(r);
+  m.timings.preprocess = seconds_since(t_start);
+  stop_point(o.stop);
+  m.cloud = std::move(r.cloud);
+  loops_of_cloud(m, o, !in.clouds.empty());
+
+  // Step 7: each object of the crop sampled as if it were alone.
+  if (o.per_object_pass && !m.best() && r.pool.size() > static_cast<std::size_t>(o.points)) {
+    // Sparse points (few of them over a large scene) must not break one object into pieces.
+    const double gap = std::max(kObjectGap, 4.0 * mean_spacing(r.pool));
+    const std::vector<int> labels = object_labels(r.pool, gap, kObjectShare);
+    const int objects = *std::max_element(labels.begin(), labels.end()) + 1;
+    if (objects >= 2) {
+      ObjectModel second = model_of_inputs(r);
+      second.objects = objects;
+      second.timings.preprocess = m.timings.preprocess;
+      PointCloud cloud;
+      for (int i : farthest_point_indices(r.pool, o.points, o.seed + 2, labels, 2 * o.points))
+        cloud.push_back(r.pool[i]);
+      second.cloud = spatial_order(cloud);
+      say(o, fmt("perception: no claspable loop; again with each of the %.0f objects sampled "
+                 "alone (%.0f points)",
+                 static_cast<double>(objects), static_cast<double>(second.cloud.size())));
+      loops_of_cloud(second, o, !in.clouds.empty());
+      if (second.best()) {
+        second.d_rule += fmt(" (each of %.0f objects sampled alone)", static_cast<double>(objects));
+        m = std::move(second);
+      } else {
+        say(o, "perception: no claspable loop either: the first pass's loops are kept");
+      }
+    }
+  }
   m.timings.total = seconds_since(t_start);
   return m;
 }

@@ -22,6 +22,13 @@
 //     more loops. Holes a finger can pass survive.
 //  6. Loops ranked (loops.hpp), for the hand if its sizes are given; k clasp targets on the best
 //     loop if it is claspable, where its bar fits the hand.
+//  7. No claspable loop, and the crop holds several objects (clusters 2 cm, or 4 spacings of the
+//     points, apart, each with 10% of the points): steps 2-6 again with the farthest points taken
+//     until the largest object holds N (at most 2 N in all). A second object spreads the N points
+//     of step 2 over more surface, and the coarser d' then fills a handle's hole; this pass keeps
+//     each object's spacing. Its model is kept when it has a claspable loop. Only then: one d
+//     cannot serve both a handle beside a second object and a wire seen with gaps, which closes
+//     only at the coarser d (examples/scenarios/conditions/README.md).
 #pragma once
 
 #include <cstdint>
@@ -95,6 +102,8 @@ struct PerceptionOptions {
   double outlier_stddev = 2.0;
   /// Loops must persist to d' = max(persistence x d, 0.8 x narrowest hole); 0 keeps every loop.
   double persistence = 1.25;
+  /// Step 7: a second pass that samples each object of the crop with N points.
+  bool per_object_pass = true;
   /// The hand to rank loops for (robots::hand_size()); 0 = none. See RankingOptions.
   double finger_thickness = 0.0;
   double closed_aperture = 0.0;
@@ -107,6 +116,8 @@ struct PerceptionOptions {
   std::function<bool()> stop;
 };
 
+/// Seconds per step; with a second pass (step 7), the steps of the model kept, and the total of
+/// both.
 struct PerceptionTimings {
   double preprocess = 0, downsample = 0, delaunay = 0, complex = 0, homology = 0, sensed = 0,
          ranking = 0, total = 0;  ///< seconds
@@ -133,6 +144,7 @@ struct ObjectModel {
   int plane_points_removed = 0;
   std::optional<Eigen::Vector4d> support_plane;  ///< the removed supporting plane, n up
   int outliers_removed = 0;
+  int objects = 1;  ///< step 7: the objects sampled one by one (1: the first pass's model)
   PerceptionTimings timings;
 
   /// The best claspable loop, or nullptr.

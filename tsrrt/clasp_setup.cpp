@@ -272,6 +272,23 @@ int choose_loop_with_room(const robots::RobotModel& model, const ClaspRequest& r
   return -1;
 }
 
+// The request's start, completed from the home pose. Its adaptive joints must sit where their
+// leaders put them: a hand before any contact.
+Eigen::VectorXd start_configuration(const robots::RobotModel& model, const Eigen::VectorXd& given) {
+  const Eigen::VectorXd q =
+      model.complete_q(std::vector<double>(given.data(), given.data() + given.size()));
+  const Eigen::VectorXd coupled = model.couple(q);
+  for (int j = 0; j < model.dof(); ++j) {
+    if (std::abs(coupled[j] - q[j]) > 1e-9) {
+      throw InputError("start: '" + model.joints[j].name +
+                       "' is an adaptive joint: it starts where '" +
+                       model.joints[model.joints[j].follows].name + "' puts it (" +
+                       std::to_string(coupled[j]) + ")");
+    }
+  }
+  return q;
+}
+
 }  // namespace
 
 ClaspResult plan_clasp(const ClaspRequest& request) {
@@ -301,17 +318,7 @@ ClaspResult plan_clasp(const ClaspRequest& request) {
   if (request.stop) planning.planner.stop = planning.secure.stop = perception.stop = request.stop;
 
   ClaspResult r;
-  r.start = model.complete_q(
-      std::vector<double>(request.start.data(), request.start.data() + request.start.size()));
-  const Eigen::VectorXd coupled = model.couple(r.start);  // an open hand, before any contact
-  for (int j = 0; j < model.dof(); ++j) {
-    if (std::abs(coupled[j] - r.start[j]) > 1e-9) {
-      throw InputError("start: '" + model.joints[j].name +
-                       "' is an adaptive joint: it starts where '" +
-                       model.joints[model.joints[j].follows].name + "' puts it (" +
-                       std::to_string(coupled[j]) + ")");
-    }
-  }
+  r.start = start_configuration(model, request.start);
   // Loops are chosen for this hand: holes its fingers pass, bars its closed hand encloses.
   r.hand = robots::hand_size(model);
   perception.finger_thickness = r.hand.finger_thickness;

@@ -206,6 +206,8 @@ py::dict object_dict(const perception::ObjectModel& m) {
   py::dict out;
   out["beta1"] = m.beta1;
   out["d"] = m.d;
+  out["d_rule"] = m.d_rule;
+  out["objects"] = m.objects;
   out["cloud"] = array_of(m.cloud);
   out["input_points"] = m.input_points;
   out["loops"] = loops;

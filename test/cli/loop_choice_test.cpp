@@ -101,6 +101,30 @@ TEST(LoopChoice, AHandleSeenFromTheFrontOnlyIsMeasuredAndChosen) {
   EXPECT_GE(chosen, 3);
 }
 
+// The pitcher on a table with a box 6 cm behind it (conditions/): the box takes its share of the
+// 2,000 points, d' grows to 3.5 cm and fills the handle's 3 cm hole. The second pass, each object
+// sampled as if alone (pipeline.hpp, step 7), keeps it: the handle is the iCub's loop again.
+TEST(LoopChoice, AHandleBesideASecondObjectIsFoundWithEachObjectSampledAlone) {
+  cli::Scenario s =
+      cli::load_scenario(std::string(CLASPPLAN_SCENARIOS) + "/conditions/pitcher_yaw0_icub.yaml");
+  const robots::HandSize size = robots::hand_size(robots::load_robot(s.robot));
+  perception::PerceptionOptions o = s.perception;
+  o.finger_thickness = size.finger_thickness;
+  o.closed_aperture = size.closed_aperture;
+  o.per_object_pass = false;
+  const perception::PerceptionInputs in = cli::scenario_inputs(s);
+  const perception::ObjectModel first = perception::build_object_model(in, o);
+  EXPECT_EQ(first.best(), nullptr);
+  o.per_object_pass = true;
+  const perception::ObjectModel m = perception::build_object_model(in, o);
+  EXPECT_EQ(m.objects, 2);
+  ASSERT_NE(m.best(), nullptr) << m.loops.size();
+  EXPECT_LT(m.persistence_d, first.persistence_d);
+  EXPECT_GT(m.best()->centre.z(), 0.10 + 0.12);  // on the pitcher's upper half, above the table
+  EXPECT_LT(m.best()->bar_thickness, 0.03);
+  EXPECT_NE(m.d_rule.find("each of 2 objects sampled alone"), std::string::npos) << m.d_rule;
+}
+
 // Holes through a 19 cm block, like a cinder block's cores: from above, a core's rim shows a thin
 // top face and hides the wall below it. The top face is never taken for a bar a hand closes on.
 TEST(LoopChoice, AWallSeenFromItsTopIsNotABar) {

@@ -72,6 +72,37 @@ TEST(FarthestPointSampling, StopsAtDuplicatesAndTakesAllWhenAskedForMore) {
   EXPECT_TRUE(farthest_point_indices({}, 3, 1).empty());
 }
 
+// Two objects 10 cm apart, one with four times the other's points, and a few stray points: with
+// labels, sampling stops when the larger object holds the count, the smaller keeps its share, and
+// the strays count for nothing.
+TEST(FarthestPointSampling, EachObjectGetsTheSpacingItWouldHaveAlone) {
+  std::mt19937_64 rng(3);
+  std::uniform_real_distribution<double> u(0.0, 1.0);
+  PointCloud cloud;
+  for (int i = 0; i < 4000; ++i) cloud.emplace_back(0.2 * u(rng), 0.2 * u(rng), 0.0);
+  for (int i = 0; i < 1000; ++i) cloud.emplace_back(0.3 + 0.1 * u(rng), 0.1 * u(rng), 0.0);
+  for (int i = 0; i < 5; ++i) cloud.emplace_back(1.0 + 0.1 * i, 1.0, 1.0);
+  const std::vector<int> labels = object_labels(cloud, 0.02, 0.1);
+  EXPECT_EQ(labels[0], 0);
+  EXPECT_EQ(labels[4000], 1);
+  EXPECT_EQ(labels[5000], -1);
+  EXPECT_EQ(*std::max_element(labels.begin(), labels.end()), 1);
+
+  const std::vector<int> picked = farthest_point_indices(cloud, 400, 1, labels, 800);
+  std::vector<int> per_object(2, 0);
+  for (int i : picked)
+    if (labels[i] >= 0) ++per_object[labels[i]];
+  EXPECT_EQ(per_object[0], 400);
+  // The smaller object (a quarter of the area) gets about a quarter as many, not what is left
+  // of 400 after the larger.
+  EXPECT_GT(per_object[1], 60);
+  EXPECT_LT(per_object[1], 160);
+  EXPECT_EQ(static_cast<int>(picked.size()), per_object[0] + per_object[1] + 5);
+  // Without labels it is the plain sampling.
+  EXPECT_EQ(farthest_point_indices(cloud, 400, 1, {}, 400), farthest_point_indices(cloud, 400, 1));
+  EXPECT_THROW(farthest_point_indices(cloud, 400, 1, {0, 1}, 800), std::invalid_argument);
+}
+
 // The sparse shuffle behind random_subset() against the plain partial Fisher-Yates on an array of
 // every index, then sorted: the same points, in input order, for small and large clouds.
 TEST(RandomSubset, SameAsAFullPartialShuffle) {
