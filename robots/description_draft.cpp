@@ -264,6 +264,18 @@ void make_adaptive(Draft& d, const Tree& t, const RobotModel& m,
                     "(--adaptive)");
 }
 
+// A hand joint that closes two or more fingers (through their mimic joints), or "".
+std::string shared_motor(const Draft& d) {
+  std::map<std::string, int> fingers;
+  for (const FingerDraft& f : d.fingers) {
+    for (const std::string& j : f.joints) {
+      const auto closes = [&](const JointDraft& h) { return h.name == j && h.closing != 0; };
+      if (std::any_of(d.hand.begin(), d.hand.end(), closes) && ++fingers[j] == 2) return j;
+    }
+  }
+  return "";
+}
+
 // A closed hand should enclose a 3 cm bar (a typical handle) with 1 cm to spare.
 constexpr double kWantedAperture = 0.04;
 
@@ -372,7 +384,14 @@ DescriptionDraft draft_description(const DraftOptions& o) {
     d.curves.push_back({"draft_" + std::to_string(f + 1),
                         {d.fingers[f].tip, {d.base_link}, d.fingers[f + 1].tip}});
   shape_hand(d, load_draft(d, o), out.guesses);
-  if (o.adaptive) make_adaptive(d, t, load_draft(d, o), out.guesses);
+  if (o.adaptive) {
+    make_adaptive(d, t, load_draft(d, o), out.guesses);
+  } else if (const std::string motor = shared_motor(d); !motor.empty()) {
+    out.guesses.push_back("coupling: '" + motor +
+                          "' closes several fingers through mimic joints, so they stop together at "
+                          "the first contact; if the hand is underactuated (tendons, springs), "
+                          "draft it with --adaptive");
+  }
   choose_goal(d, o, out.guesses);
   allow_pairs(d, o, out);
   out.yaml = to_yaml(d);

@@ -2,6 +2,7 @@
 // three-joint arm with a palm and fingers of capsule-like cylinders, written per case.
 #include "robots/description_draft.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -343,6 +344,11 @@ TEST(DescriptionDraft, AOneMotorHandClosedAtZeroIsCutFromAWholeRobot) {
   EXPECT_EQ(motor.closing, -1);
   ASSERT_EQ(m.fingers.size(), 3u);
   for (const auto& f : m.fingers) EXPECT_EQ(f.joints, std::vector<int>{m.arm_dof}) << f.name;
+  // One motor for every finger: the draft names --adaptive for an underactuated hand.
+  EXPECT_TRUE(std::any_of(d.guesses.begin(), d.guesses.end(), [](const std::string& g) {
+    return g.find("'a_1' closes several fingers") != std::string::npos &&
+           g.find("--adaptive") != std::string::npos;
+  }));
   // Along the straight fingers (the palm's z), not tilted toward the fist.
   EXPECT_NEAR(m.v_fwd.vector.z(), 1.0, 1e-9);
   EXPECT_GT(hand_size(m).closed_aperture, 0.01);
@@ -382,6 +388,8 @@ TEST(DescriptionDraft, AnAdaptiveHandsMimicJointsAreJointsOfTheirOwn) {
     EXPECT_EQ(m.joints[f.joints[0]].link, m.link_index(m.links[f.links[0]].name)) << f.name;
   }
   EXPECT_NE(d.yaml.find("# adaptive: follows a_1"), std::string::npos) << d.yaml;
+  for (const std::string& g : d.guesses)
+    EXPECT_EQ(g.find("closes several fingers"), std::string::npos);
 }
 
 }  // namespace
