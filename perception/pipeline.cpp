@@ -387,7 +387,12 @@ ObjectModel build_object_model(const PerceptionInputs& in, const PerceptionOptio
       say(o, fmt("perception: no claspable loop; again with each of the %.0f objects sampled "
                  "alone (%.0f points)",
                  static_cast<double>(objects), static_cast<double>(second.cloud.size())));
-      loops_of_cloud(second, o, !in.clouds.empty());
+      try {
+        loops_of_cloud(second, o, !in.clouds.empty());
+      } catch (const InputError& e) {  // more points, more loops: the first pass's result stands
+        say(o, std::string("perception: the second pass stopped: ") + e.what());
+        second.loops.clear();
+      }
       if (second.best()) {
         second.d_rule += fmt(" (each of %.0f objects sampled alone)", static_cast<double>(objects));
         m = std::move(second);

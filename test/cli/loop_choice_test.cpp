@@ -123,6 +123,14 @@ TEST(LoopChoice, AHandleBesideASecondObjectIsFoundWithEachObjectSampledAlone) {
   EXPECT_GT(m.best()->centre.z(), 0.10 + 0.12);  // on the pitcher's upper half, above the table
   EXPECT_LT(m.best()->bar_thickness, 0.03);
   EXPECT_NE(m.d_rule.find("each of 2 objects sampled alone"), std::string::npos) << m.d_rule;
+  // Twice the points may give more loops than K_d allows (homology max_beta1): the second pass
+  // then stops and the first pass's result stands, rather than a valid input's becoming an error.
+  ASSERT_GT(m.beta1, first.beta1 + 1);
+  o.homology.max_beta1 = first.beta1 + 1;
+  perception::ObjectModel capped;
+  ASSERT_NO_THROW(capped = perception::build_object_model(in, o));
+  EXPECT_EQ(capped.best(), nullptr);
+  EXPECT_EQ(capped.beta1, first.beta1);
 }
 
 // Holes through a 19 cm block, like a cinder block's cores: from above, a core's rim shows a thin
