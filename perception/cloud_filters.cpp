@@ -421,8 +421,13 @@ std::vector<int> object_labels(const PointCloud& cloud, double gap, double min_s
 }
 
 PointCloud farthest_point_sample(const PointCloud& cloud, int count, std::uint64_t seed) {
+  return farthest_point_sample(cloud, count, seed, {}, count);
+}
+
+PointCloud farthest_point_sample(const PointCloud& cloud, int count, std::uint64_t seed,
+                                 const std::vector<int>& labels, int limit) {
   PointCloud out;
-  for (int i : farthest_point_indices(cloud, count, seed)) out.push_back(cloud[i]);
+  for (int i : farthest_point_indices(cloud, count, seed, labels, limit)) out.push_back(cloud[i]);
   return out;
 }
 

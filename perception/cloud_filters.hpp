@@ -79,6 +79,8 @@ PointCloud farthest_point_sample(const PointCloud& cloud, int count, std::uint64
 /// spacing that `count` points give the largest, however many other objects share the crop.
 std::vector<int> farthest_point_indices(const PointCloud& cloud, int count, std::uint64_t seed,
                                         const std::vector<int>& labels, int limit);
+PointCloud farthest_point_sample(const PointCloud& cloud, int count, std::uint64_t seed,
+                                 const std::vector<int>& labels, int limit);
 
 /// The objects of a cloud: PCL Euclidean clusters of points less than `gap` apart, those of at
 /// least `min_share` of the points labelled 0, 1, ... (largest first), the rest -1.

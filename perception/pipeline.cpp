@@ -358,6 +358,37 @@ ObjectModel model_of_inputs(const Prepared& r) {
 constexpr double kObjectGap = 0.02;
 constexpr double kObjectShare = 0.1;
 
+// Step 7: the model with each object of the crop sampled as if it were alone, when the crop holds
+// two or more objects and that model has a claspable loop.
+std::optional<ObjectModel> objects_alone(const Prepared& r, const PerceptionOptions& o,
+                                         bool sensor_origin_missing) {
+  if (r.pool.size() <= static_cast<std::size_t>(o.points)) return std::nullopt;
+  // Sparse points (few of them over a large scene) must not break one object into pieces.
+  const double gap = std::max(kObjectGap, 4.0 * mean_spacing(r.pool));
+  const std::vector<int> labels = object_labels(r.pool, gap, kObjectShare);
+  const int objects = *std::max_element(labels.begin(), labels.end()) + 1;
+  if (objects < 2) return std::nullopt;
+  ObjectModel m = model_of_inputs(r);
+  m.objects = objects;
+  m.cloud =
+      spatial_order(farthest_point_sample(r.pool, o.points, o.seed + 2, labels, 2 * o.points));
+  say(o, fmt("perception: no claspable loop; again with each of the %.0f objects sampled alone "
+             "(%.0f points)",
+             static_cast<double>(objects), static_cast<double>(m.cloud.size())));
+  try {
+    loops_of_cloud(m, o, sensor_origin_missing);
+  } catch (const InputError& e) {  // more points, more loops: the first pass's result stands
+    say(o, std::string("perception: the second pass stopped: ") + e.what());
+    return std::nullopt;
+  }
+  if (!m.best()) {
+    say(o, "perception: no claspable loop either: the first pass's loops are kept");
+    return std::nullopt;
+  }
+  m.d_rule += fmt(" (each of %.0f objects sampled alone)", static_cast<double>(objects));
+  return m;
+}
+
 }  // namespace
 
 ObjectModel build_object_model(const PerceptionInputs& in, const PerceptionOptions& o) {
@@ -369,36 +400,10 @@ ObjectModel build_object_model(const PerceptionInputs& in, const PerceptionOptio
   stop_point(o.stop);
   m.cloud = std::move(r.cloud);
   loops_of_cloud(m, o, !in.clouds.empty());
-
-  // Step 7: each object of the crop sampled as if it were alone.
-  if (o.per_object_pass && !m.best() && r.pool.size() > static_cast<std::size_t>(o.points)) {
-    // Sparse points (few of them over a large scene) must not break one object into pieces.
-    const double gap = std::max(kObjectGap, 4.0 * mean_spacing(r.pool));
-    const std::vector<int> labels = object_labels(r.pool, gap, kObjectShare);
-    const int objects = *std::max_element(labels.begin(), labels.end()) + 1;
-    if (objects >= 2) {
-      ObjectModel second = model_of_inputs(r);
-      second.objects = objects;
-      second.timings.preprocess = m.timings.preprocess;
-      PointCloud cloud;
-      for (int i : farthest_point_indices(r.pool, o.points, o.seed + 2, labels, 2 * o.points))
-        cloud.push_back(r.pool[i]);
-      second.cloud = spatial_order(cloud);
-      say(o, fmt("perception: no claspable loop; again with each of the %.0f objects sampled "
-                 "alone (%.0f points)",
-                 static_cast<double>(objects), static_cast<double>(second.cloud.size())));
-      try {
-        loops_of_cloud(second, o, !in.clouds.empty());
-      } catch (const InputError& e) {  // more points, more loops: the first pass's result stands
-        say(o, std::string("perception: the second pass stopped: ") + e.what());
-        second.loops.clear();
-      }
-      if (second.best()) {
-        second.d_rule += fmt(" (each of %.0f objects sampled alone)", static_cast<double>(objects));
-        m = std::move(second);
-      } else {
-        say(o, "perception: no claspable loop either: the first pass's loops are kept");
-      }
+  if (o.per_object_pass && !m.best()) {
+    if (std::optional<ObjectModel> alone = objects_alone(r, o, !in.clouds.empty())) {
+      alone->timings.preprocess = m.timings.preprocess;
+      m = std::move(*alone);
     }
   }
   m.timings.total = seconds_since(t_start);
