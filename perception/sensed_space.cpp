@@ -109,6 +109,7 @@ class ViewCaster {
   }
 
   void build_ranges() { ranges_.emplace(view_.image); }
+  const DepthView& view() const { return view_; }
 
   // What this view says of the voxel centred at p. Its footprint is the pixel rectangle around its
   // 8 corners' projections (the cube's image lies inside it), its depth span their z range.
@@ -216,6 +217,35 @@ SensedSpace::SensedSpace(const std::vector<DepthView>& views, const Eigen::Align
   tolerance_ = o.surface_tolerance;
   casting_ = std::make_shared<Casting>();
   for (const auto& view : views) casting_->views.emplace_back(view, 0.5 * resolution_);
+}
+
+SensedSpace SensedSpace::refined(const Eigen::AlignedBox3d& box, double resolution,
+                                 long max_voxels) const {
+  if (!(resolution > 0) || !std::isfinite(resolution) || max_voxels < 1)
+    throw std::invalid_argument("sensed space: a finer grid needs an edge > 0 and voxels");
+  if (empty()) return {};
+  const Eigen::AlignedBox3d part = box.intersection(box_);
+  if (part.isEmpty()) return {};
+  // Whole voxels of this grid (a box on a voxel face may take one more layer, never one less).
+  const Eigen::Vector3d first = ((part.min() - box_.min()) / resolution_).array() - 1e-9;
+  const Eigen::Vector3d last = ((part.max() - box_.min()) / resolution_).array() + 1e-9;
+  const Eigen::Vector3d lo = box_.min() + first.array().floor().max(0.0).matrix() * resolution_;
+  const Eigen::Vector3d hi =
+      box_.min() + last.array().ceil().min(dims_.cast<double>().array()).matrix() * resolution_;
+  const Eigen::Vector3i coarse = ((hi - lo) / resolution_).array().round().cast<int>().max(1);
+  int split = static_cast<int>(std::floor(resolution_ / resolution + 1e-9));
+  const auto voxels = [&](int n) { return coarse.cast<double>().prod() * n * n * n; };
+  while (split >= 2 && voxels(split) > static_cast<double>(max_voxels)) --split;
+  if (split < 2) return {};
+  SensedSpace fine;
+  fine.resolution_ = resolution_ / split;
+  fine.tolerance_ = tolerance_;
+  fine.box_ = Eigen::AlignedBox3d(lo, hi);
+  fine.dims_ = coarse * split;
+  fine.casting_ = std::make_shared<Casting>();
+  for (const ViewCaster& v : casting_->views)
+    fine.casting_->views.emplace_back(v.view(), 0.5 * fine.resolution_);
+  return fine;
 }
 
 const std::vector<std::uint8_t>& SensedSpace::cells() const {

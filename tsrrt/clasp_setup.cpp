@@ -230,6 +230,56 @@ std::vector<Eigen::Vector3d> without_robot(const robots::RobotModel& model,
   return voxels;
 }
 
+// The voxels the robot must not enter (ClaspResult::unseen): the sensed map's, and near the loop
+// those of the same views cast on a finer grid in their place.
+void unseen_space(const robots::RobotModel& model, const perception::Loop& loop,
+                  const perception::SensedSpaceOptions& o, ClaspResult& r) {
+  const perception::SensedSpace& coarse = *r.object.sensed;
+  if (o.loop_resolution > 0.0) {
+    Eigen::AlignedBox3d around;
+    for (const Eigen::Vector3d& p : loop.points) around.extend(p);
+    around = perception::object_region(around, o.loop_margin);
+    perception::SensedSpace fine = coarse.refined(around, o.loop_resolution, o.loop_max_voxels);
+    if (!fine.empty())
+      r.sensed_near_loop = std::make_shared<const perception::SensedSpace>(std::move(fine));
+  }
+  std::vector<Eigen::Vector3d> outside = coarse.blocked_voxels(r.object.support_plane);
+  if (r.sensed_near_loop) {
+    const Eigen::AlignedBox3d& box = r.sensed_near_loop->region();
+    outside.erase(std::remove_if(outside.begin(), outside.end(),
+                                 [&](const Eigen::Vector3d& c) { return box.contains(c); }),
+                  outside.end());
+  }
+  r.unseen.push_back({without_robot(model, r.start, std::move(outside), coarse.resolution()),
+                      coarse.resolution()});
+  if (r.sensed_near_loop) {
+    const perception::SensedSpace& fine = *r.sensed_near_loop;
+    r.unseen.push_back({without_robot(model, r.start, fine.blocked_voxels(r.object.support_plane),
+                                      fine.resolution()),
+                        fine.resolution()});
+  }
+}
+
+// One line of what the sensors saw and what the robot may not enter.
+std::string sensed_summary(const ClaspResult& r) {
+  const auto n = r.object.sensed->counts();
+  const double all = static_cast<double>(n[0] + n[1] + n[2]) / 100.0;
+  std::size_t blocked = 0;
+  for (const auto& v : r.unseen) blocked += v.centres.size();
+  char line[200];
+  std::snprintf(line, sizeof line,
+                "sensed space near the object: %.0f%% free, %.0f%% occupied, %.0f%% unknown "
+                "(%zu voxels the robot may not enter",
+                n[1] / all, n[2] / all, n[0] / all, blocked);
+  std::string text = line;
+  if (r.sensed_near_loop) {
+    std::snprintf(line, sizeof line, "; %.1f mm voxels, %.1f mm near the loop",
+                  1e3 * r.object.sensed->resolution(), 1e3 * r.sensed_near_loop->resolution());
+    text += line;
+  }
+  return text + ")";
+}
+
 // The loop to clasp and its targets. The clasp targets of a loop where the closed hand reaches
 // into the environment at every approach are dropped; a claspable loop left without targets is
 // refused ("no_room") and the next one tried, unless the request names the loop.
@@ -359,17 +409,8 @@ ClaspResult plan_clasp(const ClaspRequest& request) {
   // The scene: the robot, the object's collision mesh, the static environment and the space near
   // the object that no sensor saw (unknown is occupied there: sensed_space.hpp).
   if (r.object.sensed) {
-    r.unseen_edge = r.object.sensed->resolution();
-    r.unseen_voxels = without_robot(
-        model, r.start, r.object.sensed->blocked_voxels(r.object.support_plane), r.unseen_edge);
-    const auto n = r.object.sensed->counts();
-    const double all = static_cast<double>(n[0] + n[1] + n[2]) / 100.0;
-    char line[160];
-    std::snprintf(line, sizeof line,
-                  "sensed space near the object: %.0f%% free, %.0f%% occupied, %.0f%% unknown "
-                  "(%zu voxels the robot may not enter)",
-                  n[1] / all, n[2] / all, n[0] / all, r.unseen_voxels.size());
-    say(line);
+    unseen_space(model, loop, perception.sensed, r);
+    say(sensed_summary(r));
   }
   r.collision_mesh = object_collision_mesh(r.object, loop, perception.workspace, request.name);
   robots::CollisionWorld world = make_collision_world(model, r);
@@ -416,7 +457,8 @@ robots::CollisionWorld make_collision_world(const robots::RobotModel& robot,
   robots::CollisionWorld world(robot);
   world.set_object(result.collision_mesh.vertices, result.collision_mesh.triangles);
   for (const auto& b : result.environment) world.add_box(b.pose, b.size);
-  if (!result.unseen_voxels.empty()) world.add_voxels(result.unseen_voxels, result.unseen_edge);
+  for (const auto& v : result.unseen)
+    if (!v.centres.empty()) world.add_voxels(v.centres, v.edge);
   return world;
 }
 

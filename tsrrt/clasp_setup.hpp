@@ -174,11 +174,19 @@ struct ClaspResult {
   /// frame: its seen surface and the loop's tube.
   TriangleMesh collision_mesh;
   std::vector<EnvironmentBox> environment;
+  /// The sensed map cast again on a finer grid near the chosen loop
+  /// (perception::SensedSpaceOptions::loop_resolution), or null: in its region it stands for
+  /// object.sensed.
+  std::shared_ptr<const perception::SensedSpace> sensed_near_loop;
   /// Space near the object that no sensor saw (perception::SensedSpace::blocked_voxels(): unknown
-  /// voxels, and the support's below its surface): cubes of edge unseen_edge the robot must not
-  /// enter. Empty without a sensed map (a mesh, or a cloud without a sensor origin).
-  std::vector<Eigen::Vector3d> unseen_voxels;
-  double unseen_edge = 0.0;
+  /// voxels, and the support's below its surface), as cubes the robot must not enter: the sensed
+  /// map's outside sensed_near_loop's region, then sensed_near_loop's. Empty without a sensed map
+  /// (a mesh, or a cloud without a sensor origin).
+  struct Voxels {
+    std::vector<Eigen::Vector3d> centres;
+    double edge = 0.0;
+  };
+  std::vector<Voxels> unseen;
 
   /// kNoClasp after a search whose attempts most often ran into unseen space, or a controller
   /// run that unseen space stopped: a camera that would see most of the unknown space where the

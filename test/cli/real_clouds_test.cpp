@@ -223,7 +223,7 @@ TEST(RealClouds, NoSearchedMotionOrClosedHandEntersUnseenSpace) {
   ASSERT_EQ(closed.size(), 3u);
   EXPECT_LT(nearest, 0.2) << "the search never came near the handle";
   const double resolution = request.planning.collision_resolution;
-  UnseenSpaceProbe probe(*request.robot, *r.object.sensed);
+  UnseenSpaceProbe probe(*request.robot, *r.object.sensed, r.sensed_near_loop.get());
   for (std::size_t i = 0; i < motions.size(); ++i) {
     const auto reached = probe.first_in(motions[i], resolution);
     ASSERT_FALSE(reached) << "motion " << i << " of " << motions.size() << ": " << *reached;

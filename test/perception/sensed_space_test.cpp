@@ -115,6 +115,48 @@ TEST(SensedSpace, GridIsSnappedAndCoarsenedToItsBudget) {
   EXPECT_NEAR(lo.x(), std::round(lo.x()), 1e-6);
 }
 
+// The planner's finer map near a loop: the same views on voxels that divide the coarse ones. It
+// finds more free space at the sphere's edge (voxels that the silhouette only partly shadows), and
+// every part of a free coarse voxel stays free.
+TEST(SensedSpace, AFinerGridNearTheLoopKeepsTheFreeSpaceAndFindsMore) {
+  OneView scene;
+  scene.view.camera.no_reading_is_free = true;
+  const SensedSpace coarse({scene.view}, scene.region());
+  // Around the sphere's upper silhouette, beside its shadow.
+  const Eigen::AlignedBox3d box(Eigen::Vector3d(0.0, -0.03, 0.09),
+                                Eigen::Vector3d(0.1, 0.03, 0.11));
+  const SensedSpace fine = coarse.refined(box, 0.0016, 1'000'000);
+  ASSERT_FALSE(fine.empty());
+  EXPECT_NEAR(fine.resolution(), coarse.resolution() / 3, 1e-12);
+  // Snapped to whole coarse voxels that hold the box.
+  EXPECT_TRUE(fine.region().contains(box.min()) && fine.region().contains(box.max()));
+  const Eigen::Vector3d lo = (fine.region().min() - coarse.region().min()) / coarse.resolution();
+  EXPECT_NEAR(lo.x(), std::round(lo.x()), 1e-6);
+  EXPECT_NEAR(lo.z(), std::round(lo.z()), 1e-6);
+  double free_fine = 0.0, free_coarse = 0.0;
+  const Eigen::Vector3i n = fine.dims();
+  for (int k = 0; k < n.z(); ++k)
+    for (int j = 0; j < n.y(); ++j)
+      for (int i = 0; i < n.x(); ++i) {
+        const Eigen::Vector3d c = fine.centre(i, j, k);
+        const Sensed parent = coarse.at(c);
+        if (parent == Sensed::kFree) {
+          EXPECT_EQ(fine.cell(i, j, k), Sensed::kFree);
+        }
+        free_fine += fine.cell(i, j, k) == Sensed::kFree;
+        free_coarse += parent == Sensed::kFree;
+      }
+  EXPECT_GT(free_fine, 1.1 * free_coarse);
+  // The budget coarsens the finer grid (halves instead of thirds), then gives up.
+  EXPECT_NEAR(coarse.refined(box, 0.0016, n.prod() / 2).resolution(), coarse.resolution() / 2,
+              1e-12);
+  EXPECT_TRUE(coarse.refined(box, 0.0016, 10).empty());
+  EXPECT_TRUE(coarse.refined(box, 0.004, 1'000'000).empty()) << "not finer in two";
+  const Eigen::AlignedBox3d away(Eigen::Vector3d::Constant(1.0), Eigen::Vector3d::Constant(1.1));
+  EXPECT_TRUE(coarse.refined(away, 0.0016, 1'000'000).empty());
+  EXPECT_THROW(coarse.refined(box, 0.0, 1'000'000), std::invalid_argument);
+}
+
 TEST(SensedSpace, WithoutViewsEverythingIsUnknownAndBadRegionsThrow) {
   const OneView scene;
   const SensedSpace blind({}, scene.region());

@@ -65,7 +65,16 @@ class UnseenSpaceProbe {
  public:
   UnseenSpaceProbe(const robots::RobotModel& model, const perception::SensedSpace& space,
                    double step = 0.004)
-      : model_(model), space_(space), data_(model), moves_(model.links.size(), false) {
+      : UnseenSpaceProbe(model, space, nullptr, step) {}
+  /// With a finer map over part of the region (tsrrt::ClaspResult::sensed_near_loop), which
+  /// stands for `space` where it has voxels; null: none.
+  UnseenSpaceProbe(const robots::RobotModel& model, const perception::SensedSpace& space,
+                   const perception::SensedSpace* finer, double step = 0.004)
+      : model_(model),
+        space_(space),
+        finer_(finer && !finer->empty() ? finer : nullptr),
+        data_(model),
+        moves_(model.links.size(), false) {
     for (std::size_t l = 0; l < model.links.size(); ++l) {
       const robots::Link& link = model.links[l];
       moves_[l] = (link.parent >= 0 && moves_[link.parent]) ||
@@ -110,7 +119,9 @@ class UnseenSpaceProbe {
       if (space_.region().exteriorDistance(pose.translation()) > reach_[s]) continue;
       for (const auto& p : interior_[s]) {
         const Eigen::Vector3d x = pose * p;
-        if (space_.region().contains(x) && space_.at(x) == perception::Sensed::kUnknown)
+        if (!space_.region().contains(x)) continue;
+        const bool fine = finer_ && finer_->region().contains(x);
+        if ((fine ? finer_->at(x) : space_.at(x)) == perception::Sensed::kUnknown)
           return model_.links[shape.link].name + " reaches (" + std::to_string(x.x()) + ", " +
                  std::to_string(x.y()) + ", " + std::to_string(x.z()) + ")";
       }
@@ -120,6 +131,7 @@ class UnseenSpaceProbe {
 
   const robots::RobotModel& model_;
   const perception::SensedSpace& space_;
+  const perception::SensedSpace* finer_;
   robots::RobotData data_;
   std::vector<bool> moves_;
   std::vector<std::vector<Eigen::Vector3d>> interior_;
@@ -129,8 +141,9 @@ class UnseenSpaceProbe {
 /// One motion through UnseenSpaceProbe::first_in.
 inline std::optional<std::string> first_in_unseen_space(
     const robots::RobotModel& model, const std::vector<Eigen::VectorXd>& waypoints,
-    const perception::SensedSpace& space, double resolution, double step = 0.004) {
-  return UnseenSpaceProbe(model, space, step).first_in(waypoints, resolution);
+    const perception::SensedSpace& space, double resolution, double step = 0.004,
+    const perception::SensedSpace* finer = nullptr) {
+  return UnseenSpaceProbe(model, space, finer, step).first_in(waypoints, resolution);
 }
 
 }  // namespace claspplan::test

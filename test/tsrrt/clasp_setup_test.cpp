@@ -137,9 +137,14 @@ TEST_F(PurseFromDepth, NoPartOfTheRobotEntersUnseenSpace) {
   ASSERT_TRUE(r.object.sensed);
   const auto n = r.object.sensed->counts();
   EXPECT_GT(n[0], 0) << "the purse's inside and back are unknown";
-  EXPECT_FALSE(r.unseen_voxels.empty());
+  ASSERT_EQ(r.unseen.size(), 2u) << "the sensed map's voxels, and the finer ones near the loop";
+  EXPECT_FALSE(r.unseen[0].centres.empty());
+  EXPECT_FALSE(r.unseen[1].centres.empty());
+  ASSERT_TRUE(r.sensed_near_loop);
+  EXPECT_LT(r.unseen[1].edge, r.unseen[0].edge);
   const auto reached = first_in_unseen_space(*sdh(), r.motion.waypoints, *r.object.sensed,
-                                             request_for(purse()).planning.collision_resolution);
+                                             request_for(purse()).planning.collision_resolution,
+                                             0.004, r.sensed_near_loop.get());
   EXPECT_FALSE(reached) << *reached;
 }
 
