@@ -230,7 +230,8 @@ RunOutcome run_scenario(const Scenario& scenario, const RunOptions& options) {
     perception::draw_sensed_space_png(
         *r.object.sensed, centre, shown ? shown->points : std::vector<Eigen::Vector3d>{},
         shown ? "loop rank " + std::to_string(shown->rank) + ": " + shown->reason : "no loop",
-        options.out_dir + "/sensed.png", r.next_view ? &*r.next_view : nullptr);
+        options.out_dir + "/sensed.png", r.next_view ? &*r.next_view : nullptr,
+        r.sensed_near_loop.get());
   }
   if (!loop) {
     result["success"] = false;

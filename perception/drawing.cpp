@@ -117,8 +117,10 @@ void draw_object_model_png(const ObjectModel& model, const std::string& path, in
 
 void draw_sensed_space_png(const SensedSpace& space, const Eigen::Vector3d& centre,
                            const std::vector<Eigen::Vector3d>& loop, const std::string& caption,
-                           const std::string& path, const ViewSuggestion* view) {
+                           const std::string& path, const ViewSuggestion* view,
+                           const SensedSpace* finer) {
   if (space.empty()) throw std::invalid_argument("sensed space: nothing to draw (no sensor)");
+  if (finer && finer->empty()) finer = nullptr;
   constexpr int kPanel = 320, kGap = 10, kTop = 24;
   const int bottom = view ? 78 : 56;
   cv::Mat img(kTop + kPanel + bottom, 3 * kPanel + 4 * kGap, CV_8UC3, cv::Scalar(255, 255, 255));
@@ -145,7 +147,8 @@ void draw_sensed_space_png(const SensedSpace& space, const Eigen::Vector3d& cent
           out = cv::Vec3b(200, 200, 200);
           continue;
         }
-        const cv::Scalar& k = colour[static_cast<int>(space.at(p))];
+        const bool fine = finer && finer->region().contains(p);
+        const cv::Scalar& k = colour[static_cast<int>(fine ? finer->at(p) : space.at(p))];
         out =
             cv::Vec3b(static_cast<uchar>(k[0]), static_cast<uchar>(k[1]), static_cast<uchar>(k[2]));
       }
@@ -153,6 +156,9 @@ void draw_sensed_space_png(const SensedSpace& space, const Eigen::Vector3d& cent
       return cv::Point(x0 + static_cast<int>((q[a] - lo.x()) * scale),
                        y0 + kPanel - static_cast<int>((q[b] - lo.y()) * scale));
     };
+    if (finer && finer->region().min()[c] <= centre[c] && centre[c] <= finer->region().max()[c])
+      cv::rectangle(img, screen(finer->region().min()), screen(finer->region().max()),
+                    cv::Scalar(130, 130, 130), 1);
     for (std::size_t i = 0; i < loop.size(); ++i)
       cv::line(img, screen(loop[i]), screen(loop[(i + 1) % loop.size()]), cv::Scalar(0, 0, 220), 2,
                cv::LINE_AA);
@@ -172,11 +178,15 @@ void draw_sensed_space_png(const SensedSpace& space, const Eigen::Vector3d& cent
   const auto n = space.counts();
   const double all = static_cast<double>(n[0] + n[1] + n[2]);
   char buf[256];
+  char finer_text[48] = "";
+  if (finer)
+    std::snprintf(finer_text, sizeof finer_text, ", %.1f mm in the box",
+                  1000.0 * finer->resolution());
   std::snprintf(buf, sizeof buf,
                 "free (white) %.0f%%, occupied (blue) %.0f%%, unknown (orange) %.0f%%: %.1f mm "
-                "voxels; grey: outside the object's region (unknown there counts as free)",
+                "voxels%s; grey: outside the region, free to the robot",
                 100.0 * n[1] / all, 100.0 * n[2] / all, 100.0 * n[0] / all,
-                1000.0 * space.resolution());
+                1000.0 * space.resolution(), finer_text);
   cv::putText(img, buf, cv::Point(kGap, kTop + kPanel + 20), cv::FONT_HERSHEY_SIMPLEX, 0.42,
               cv::Scalar(0, 0, 0), 1, cv::LINE_AA);
   cv::putText(img, caption.substr(0, 150), cv::Point(kGap, kTop + kPanel + 42),

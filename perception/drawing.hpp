@@ -18,10 +18,13 @@ void draw_object_model_png(const ObjectModel& model, const std::string& path, in
 /// Draws the sensed map (sensed_space.hpp) in three slices through `centre` (world axes: the
 /// x-z plane, the y-z plane and the x-y plane): free voxels white, occupied dark blue, unknown
 /// orange, outside the region grey; `loop` (optional) in red, projected onto each slice; `view`
-/// (optional, a next best view) as a green line of sight to a dot at its target. Throws
-/// std::invalid_argument for an empty map, std::runtime_error if the file cannot be written.
+/// (optional, a next best view) as a green line of sight to a dot at its target; `finer`
+/// (optional, SensedSpace::refined() of it) stands for `space` inside its region, outlined in
+/// grey. Throws std::invalid_argument for an empty map, std::runtime_error if the file cannot be
+/// written.
 void draw_sensed_space_png(const SensedSpace& space, const Eigen::Vector3d& centre,
                            const std::vector<Eigen::Vector3d>& loop, const std::string& caption,
-                           const std::string& path, const ViewSuggestion* view = nullptr);
+                           const std::string& path, const ViewSuggestion* view = nullptr,
+                           const SensedSpace* finer = nullptr);
 
 }  // namespace claspplan::perception

@@ -4,9 +4,12 @@
 #include "perception/sensed_space.hpp"
 
 #include <gtest/gtest.h>
+#include <opencv2/imgcodecs.hpp>
 
 #include "examples/objects.hpp"
 #include "perception/depth_render.hpp"
+#include "perception/drawing.hpp"
+#include "test/support/temp_dir.hpp"
 
 namespace claspplan::perception {
 namespace {
@@ -155,6 +158,29 @@ TEST(SensedSpace, AFinerGridNearTheLoopKeepsTheFreeSpaceAndFindsMore) {
   const Eigen::AlignedBox3d away(Eigen::Vector3d::Constant(1.0), Eigen::Vector3d::Constant(1.1));
   EXPECT_TRUE(coarse.refined(away, 0.0016, 1'000'000).empty());
   EXPECT_THROW(coarse.refined(box, 0.0, 1'000'000), std::invalid_argument);
+}
+
+// sensed.png shows what the planner used: the finer voxels inside their box, which find more of
+// the space around the sphere's silhouette free.
+TEST(SensedSpace, TheSensedPictureShowsTheFinerVoxels) {
+  OneView scene;
+  scene.view.camera.no_reading_is_free = true;
+  const SensedSpace coarse({scene.view}, scene.region());
+  const Eigen::AlignedBox3d box(Eigen::Vector3d(-0.12, -0.12, -0.02),
+                                Eigen::Vector3d(0.12, 0.12, 0.02));
+  const SensedSpace fine = coarse.refined(box, 0.0016, 1'000'000);
+  ASSERT_FALSE(fine.empty());
+  test::TempDir dir;
+  const auto free_pixels = [&](const SensedSpace* finer) {
+    const std::string path = dir.file("sensed.png");
+    draw_sensed_space_png(coarse, Eigen::Vector3d::Zero(), {}, "a sphere", path, nullptr, finer);
+    const cv::Mat img = cv::imread(path, cv::IMREAD_COLOR);
+    int n = 0;
+    for (int y = 0; y < img.rows; ++y)
+      for (int x = 0; x < img.cols; ++x) n += img.at<cv::Vec3b>(y, x) == cv::Vec3b(245, 245, 245);
+    return n;
+  };
+  EXPECT_GT(free_pixels(&fine), free_pixels(nullptr) + 100);
 }
 
 TEST(SensedSpace, WithoutViewsEverythingIsUnknownAndBadRegionsThrow) {
