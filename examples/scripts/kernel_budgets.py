@@ -35,6 +35,8 @@ BUDGETS = [
      1.0, "s"),
     ("sensed space (free/occupied/unknown) of two 640x480 views, 5 mm voxels",
      "BM_SensedSpace/0", "time", 150e-3, "s"),
+    ("the same, and 1.7 mm voxels near a handle-sized loop (the planner's map)",
+     "BM_SensedSpace/2", "time", 150e-3, "s"),
     ("escape search, gravity and approach stages on a secure clasp",
      "BM_EscapeSearch/1/iterations:5", "time", 0.2, "s"),
     ("secure-clasp check, one thread, against its reference",

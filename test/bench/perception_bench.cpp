@@ -237,7 +237,9 @@ BENCHMARK(BM_DepthSurfaceMesh)->Arg(0)->Arg(1)->Unit(benchmark::kMillisecond);
 
 // The sensed space (sensed_space.hpp) of two 640x480 views of the purse on its table, 1 mm noise:
 // the object's region (its bounds grown by 8 cm) at 5 mm voxels, and (argument 1) the list of
-// voxels the robot must not enter taken from it.
+// voxels the robot must not enter taken from it; (argument 2) with the planner's finer voxels
+// near the loop (SensedSpace::refined) cast too, over a handle's box at the purse's top: a
+// 14 x 6 cm loop grown by 3 cm.
 void BM_SensedSpace(benchmark::State& state) {
   TriangleMesh scene = objects::purse();
   append_mesh(scene, objects::ground_plane(1.2));
@@ -251,12 +253,25 @@ void BM_SensedSpace(benchmark::State& state) {
     voxels = space.dims().prod();
     if (state.range(0) == 0) benchmark::DoNotOptimize(space.counts());  // the whole grid cast
     if (state.range(0) == 1) blocked = space.blocked_voxels(Eigen::Vector4d(0, 0, 1, 0)).size();
+    if (state.range(0) == 2) {
+      const SensedSpaceOptions o;
+      const Eigen::Vector3d top(purse_box.center().x(), purse_box.center().y(),
+                                purse_box.max().z());
+      const Eigen::AlignedBox3d loop(top - Eigen::Vector3d(0.07, 0.0, 0.06),
+                                     top + Eigen::Vector3d(0.07, 0.0, 0.0));
+      const SensedSpace fine =
+          space.refined(object_region(loop, o.loop_margin), o.loop_resolution, o.loop_max_voxels);
+      benchmark::DoNotOptimize(space.counts());
+      benchmark::DoNotOptimize(fine.counts());
+      state.counters["finer_voxels"] = static_cast<double>(fine.dims().prod());
+      state.counters["finer_mm"] = 1e3 * fine.resolution();
+    }
     benchmark::DoNotOptimize(voxels);
   }
   state.counters["voxels"] = static_cast<double>(voxels);
   state.counters["blocked"] = static_cast<double>(blocked);
 }
-BENCHMARK(BM_SensedSpace)->Arg(0)->Arg(1)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_SensedSpace)->Arg(0)->Arg(1)->Arg(2)->Unit(benchmark::kMillisecond);
 
 // The next best view (next_view.hpp) for a search that ran into the purse's unseen space: 4,000
 // contact points spread over the unknown voxels above its table (two views, as above).
