@@ -147,8 +147,7 @@ void draw_sensed_space_png(const SensedSpace& space, const Eigen::Vector3d& cent
           out = cv::Vec3b(200, 200, 200);
           continue;
         }
-        const bool fine = finer && finer->region().contains(p);
-        const cv::Scalar& k = colour[static_cast<int>(fine ? finer->at(p) : space.at(p))];
+        const cv::Scalar& k = colour[static_cast<int>(sensed_at(space, finer, p))];
         out =
             cv::Vec3b(static_cast<uchar>(k[0]), static_cast<uchar>(k[1]), static_cast<uchar>(k[2]));
       }

@@ -314,6 +314,10 @@ std::vector<Eigen::Vector3d> SensedSpace::blocked_voxels(
   return out;
 }
 
+Sensed sensed_at(const SensedSpace& space, const SensedSpace* finer, const Eigen::Vector3d& p) {
+  return finer && finer->region().contains(p) ? finer->at(p) : space.at(p);
+}
+
 Eigen::AlignedBox3d object_region(const Eigen::AlignedBox3d& bounds, double margin) {
   if (bounds.isEmpty()) return bounds;
   const Eigen::Vector3d m = Eigen::Vector3d::Constant(margin);

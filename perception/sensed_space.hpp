@@ -122,6 +122,10 @@ class SensedSpace {
   std::shared_ptr<Casting> casting_;  // null: no sensor (default-constructed)
 };
 
+/// The state at p of a map with a finer one over part of it (SensedSpace::refined(); null:
+/// none): the finer map's inside its region, the map's elsewhere.
+Sensed sensed_at(const SensedSpace& space, const SensedSpace* finer, const Eigen::Vector3d& p);
+
 /// The object's region: `bounds` grown by `margin` on every side.
 Eigen::AlignedBox3d object_region(const Eigen::AlignedBox3d& bounds, double margin);
 

@@ -119,9 +119,8 @@ class UnseenSpaceProbe {
       if (space_.region().exteriorDistance(pose.translation()) > reach_[s]) continue;
       for (const auto& p : interior_[s]) {
         const Eigen::Vector3d x = pose * p;
-        if (!space_.region().contains(x)) continue;
-        const bool fine = finer_ && finer_->region().contains(x);
-        if ((fine ? finer_->at(x) : space_.at(x)) == perception::Sensed::kUnknown)
+        if (space_.region().contains(x) &&
+            perception::sensed_at(space_, finer_, x) == perception::Sensed::kUnknown)
           return model_.links[shape.link].name + " reaches (" + std::to_string(x.x()) + ", " +
                  std::to_string(x.y()) + ", " + std::to_string(x.z()) + ")";
       }
