@@ -158,7 +158,8 @@ ClaspCandidate close_and_check_at(const ClaspScene& scene, const Eigen::VectorXd
                                   ClaspTimings& timings, bool refuse_unlinked) {
   ClaspCandidate c;
   auto t = Clock::now();
-  c.q_closed = close_fingers(scene.robot, scene.world, q_open, scene.planning.closing);
+  c.q_closed =
+      close_fingers(scene.robot, scene.world, q_open, scene.planning.closing, &c.unseen_stops);
   timings.closing += since(t);
   // A closed hand that falls below the goal region the tree stopped in is no clasp: refused at
   // once.

@@ -116,6 +116,9 @@ struct ClaspCandidate {
   double closed_linking = 0.0;  ///< mean |VLk| of the closed hand (eq. 4)
   bool refused = false;         ///< below the tree's tolerance: no check ran
   bool screened_out = false;    ///< the check's screening (its first motions) found an escape
+  /// Where the fingers stopped against unseen space when they closed at the open pose
+  /// (close_fingers' unseen_stops): what a camera would have to see for them to close further.
+  std::vector<Eigen::Vector3d> unseen_stops;
   SecureClaspReport check;
 };
 

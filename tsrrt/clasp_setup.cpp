@@ -37,7 +37,8 @@ std::vector<Eigen::Vector3d> without_robot(const robots::RobotModel& model,
 // A camera that would see where the robot met space no camera saw (next_view.hpp), at least 5 cm
 // clear of the environment and of the robot at its start.
 void suggest_view(const robots::RobotModel& model, ClaspResult& r,
-                  const std::vector<Eigen::Vector3d>& unseen_contacts) {
+                  const std::vector<Eigen::Vector3d>& unseen_contacts,
+                  const std::string& what = "the space it ran into is unseen") {
   if (!r.object.sensed) return;
   constexpr double kClear = 0.05;
   perception::ViewOptions o;
@@ -48,8 +49,7 @@ void suggest_view(const robots::RobotModel& model, ClaspResult& r,
   };
   r.next_view =
       perception::view_into_unknown(*r.object.sensed, unseen_contacts, r.object.support_plane, o);
-  if (r.next_view)
-    r.reason += "; the space it ran into is unseen: " + perception::view_text(*r.next_view);
+  if (r.next_view) r.reason += "; " + what + ": " + perception::view_text(*r.next_view);
 }
 
 // The clasp controller alone toward the nearest clasp target. A run that the object stops
@@ -101,6 +101,8 @@ void run_controller_only(const ClaspRequest& request, const ClaspScene& scene, c
     r.reason = "verified clasp: the fingers touched the object in the goal region and closed";
   } else {
     r.reason += "; closed there: " + insecure_reason(c.check);
+    if (!c.unseen_stops.empty())
+      suggest_view(scene.robot, r, c.unseen_stops, "the fingers stopped on unseen space");
   }
 }
 
@@ -115,6 +117,9 @@ void run_search(const ClaspScene& scene, const Say& say, ClaspResult& r) {
   ClaspCandidate last;
   SecureClaspReport check;  // the last check made
   int candidates = 0, screened = 0;
+  // Insecure closings whose fingers stopped against unseen space, and where (the first points).
+  int rejected = 0, stopped_unseen = 0;
+  std::vector<Eigen::Vector3d> unseen_stops;
   const auto close_and_verify = [&](const Eigen::VectorXd& q_goal) {
     ++candidates;
     last = close_and_check(scene, q_goal, r.timings, planning.verify_in_search);
@@ -141,6 +146,12 @@ void run_search(const ClaspScene& scene, const Say& say, ClaspResult& r) {
     } else if (!check.secure) {
       say("  rejected: " + insecure_reason(check) +
           (last.screened_out ? " (in the screening: the full check's first motions)" : ""));
+      ++rejected;
+      if (!last.unseen_stops.empty()) {
+        ++stopped_unseen;
+        for (const Eigen::Vector3d& p : last.unseen_stops)
+          if (unseen_stops.size() < ClaspProblem::kMaxContacts) unseen_stops.push_back(p);
+      }
     }
     return check.secure || !planning.verify_in_search;
   };
@@ -167,8 +178,14 @@ void run_search(const ClaspScene& scene, const Say& say, ClaspResult& r) {
   if (!plan.success) {
     r.reason = plan.reason;
     // Named when unseen space is what most attempts ran into, as the reason's "most ..." says.
-    if (r.statistics.connect_outcomes.unseen_space_leads())
+    if (r.statistics.connect_outcomes.unseen_space_leads()) {
       suggest_view(scene.robot, r, problem.unseen_contacts());
+    } else if (2 * stopped_unseen > rejected) {
+      // The hand got round the bar, but the fingers closed on what no camera saw.
+      suggest_view(scene.robot, r, unseen_stops,
+                   "in " + std::to_string(stopped_unseen) + " of the " + std::to_string(rejected) +
+                       " rejected clasps the fingers stopped on unseen space");
+    }
     return;
   }
   say("  clasp found after " + std::to_string(plan.cycles) + " cycles, " +

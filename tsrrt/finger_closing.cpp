@@ -8,7 +8,8 @@
 namespace claspplan::tsrrt {
 
 Eigen::VectorXd close_fingers(const robots::RobotModel& model, robots::CollisionWorld& world,
-                              const Eigen::VectorXd& q_start, const FingerClosingOptions& o) {
+                              const Eigen::VectorXd& q_start, const FingerClosingOptions& o,
+                              std::vector<Eigen::Vector3d>* unseen_stops) {
   Eigen::VectorXd q = q_start;
   robots::RobotData data(model);
   const Eigen::VectorXd lower = model.lower(), upper = model.upper();
@@ -33,10 +34,16 @@ Eigen::VectorXd close_fingers(const robots::RobotModel& model, robots::Collision
     }
   }
   const auto blocked_link = [&](std::size_t finger) {
+    robots::CollisionReport report;
     for (int link : moved[finger]) {
-      if (world.link_near_object(data, link, o.clearance) ||
-          world.link_in_collision(data, link, nullptr, /*include_self=*/true))
+      if (world.link_near_object(data, link, o.clearance)) return link;
+      if (world.link_in_collision(data, link, &report, /*include_self=*/true)) {
+        if (unseen_stops && report.second == "unseen space") {
+          const Eigen::Vector3d at = world.contact_point(world.environment_hit());
+          if (at.allFinite()) unseen_stops->push_back(at);
+        }
         return link;
+      }
     }
     return -1;
   };

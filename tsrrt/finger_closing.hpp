@@ -1,6 +1,8 @@
 // Closing the fingers until contact (paper Sec. V): each finger curls around what it meets.
 #pragma once
 
+#include <vector>
+
 #include <Eigen/Core>
 
 #include "robots/collision_world.hpp"
@@ -20,8 +22,10 @@ struct FingerClosingOptions {
 /// object or its joints reach their limits; every step stays collision-free. A link that comes
 /// within the clearance (or touches the robot) stops the joints that move it, and the joints beyond
 /// it go on closing: the finger curls around what it meets. Returns the closed configuration (the
-/// path's last pose).
+/// path's last pose). `unseen_stops` (optional) gets a point of the unseen space (world frame) each
+/// time a link stops against it: where a camera would have to look for the fingers to close on.
 Eigen::VectorXd close_fingers(const robots::RobotModel& model, robots::CollisionWorld& world,
-                              const Eigen::VectorXd& q, const FingerClosingOptions& options);
+                              const Eigen::VectorXd& q, const FingerClosingOptions& options,
+                              std::vector<Eigen::Vector3d>* unseen_stops = nullptr);
 
 }  // namespace claspplan::tsrrt

@@ -1,4 +1,5 @@
 // `claspplan run`, `verify` and `demo` on the committed scenario files, as a user runs them.
+#include <algorithm>
 #include <filesystem>
 #include <fstream>
 
@@ -436,6 +437,34 @@ TEST(Planner, ASearchIntoUnseenSpaceNamesACameraThatWouldSeeIt) {
   // It looks at the gap: between the jug (0.55, 0) and the second object (x 0.75-0.83).
   EXPECT_GT(target.x(), 0.55);
   EXPECT_LT(target.x(), 0.75);
+  EXPECT_GT(view["visible_voxels"].get<double>(), 0.0);
+}
+
+// The iCub's hand gets round the pitcher's handle (turned 180 degrees, beside a second object),
+// but its fingers close on space no camera saw behind the bar and the clasps are insecure. The
+// reason says so and names a camera that would see where the fingers stopped: at the handle.
+TEST(Planner, ClaspsWhoseFingersStopOnUnseenSpaceNameACamera) {
+  TempDir dir;
+  const CliResult r =
+      run_cli({"run", scenario("conditions/pitcher_yaw180_icub"), "--seed", "1", "--max-cycles",
+               "60", "--no-pictures", "--out", dir.file("out"), "--json"});
+  ASSERT_EQ(r.exit_code, 1) << r.err;
+  const std::string reason = r.json()["reason"].get<std::string>();
+  EXPECT_EQ(reason.find("most ran into space no sensor saw"), std::string::npos) << reason;
+  EXPECT_NE(
+      reason.find("rejected clasps the fingers stopped on unseen space: a camera {position: ["),
+      std::string::npos)
+      << reason;
+  const json result = read_json(dir.file("out/result.json"));
+  const json view = result.at("next_best_view");
+  const Eigen::Vector3d position(view["position"][0], view["position"][1], view["position"][2]);
+  const Eigen::Vector3d target(view["target"][0], view["target"][1], view["target"][2]);
+  EXPECT_NEAR((position - target).norm(), 0.6, 1e-6);
+  EXPECT_GT(position.z(), 0.16 + 0.05) << "above the 16 cm table";
+  double nearest = 1.0;
+  for (const auto& p : result.at("loop"))
+    nearest = std::min(nearest, (Eigen::Vector3d(p[0], p[1], p[2]) - target).norm());
+  EXPECT_LT(nearest, 0.05) << "it looks at the handle";
   EXPECT_GT(view["visible_voxels"].get<double>(), 0.0);
 }
 

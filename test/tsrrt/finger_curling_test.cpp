@@ -1,6 +1,7 @@
 // Finger closing on geometry built here: a finger whose base link meets an obstacle curls its tip;
 // a motor that moves two fingers stops for either.
 #include <string>
+#include <vector>
 
 #include <gtest/gtest.h>
 
@@ -52,6 +53,35 @@ TEST(FingerClosing, ABlockedBaseLinkStopsItsJointWhileTheTipCurlsOn) {
   // The closed pose keeps the clearance: no link of the hand touches the cube.
   robots::forward_kinematics(model, closed, data);
   EXPECT_FALSE(world.in_collision(data));
+}
+
+// The same finger stopped by unseen space instead of the object: the closing says where, so that a
+// camera can be named to look there (run_search); stopping at the object says nothing.
+TEST(FingerClosing, AFingerStoppedByUnseenSpaceSaysWhere) {
+  const robots::RobotModel model = robots::load_robot("kr5_sdh");
+  const int base_joint = model.joint_index("finger_12_joint");
+  const int base_link = model.link_index("finger_12_link");
+  Eigen::VectorXd q_bent = model.home;
+  q_bent[base_joint] += model.joints[base_joint].closing * 0.6;
+  const TriMesh cube = cube_at(model, q_bent, base_link, false);
+  Eigen::Vector3d centre = Eigen::Vector3d::Zero();
+  for (const auto& v : cube.vertices) centre += v / static_cast<double>(cube.vertices.size());
+
+  robots::CollisionWorld unseen(model);
+  unseen.add_voxels({centre}, 0.006);
+  std::vector<Eigen::Vector3d> stops;
+  const Eigen::VectorXd closed = tsrrt::close_fingers(model, unseen, model.home, {}, &stops);
+  const double closed_by =
+      model.joints[base_joint].closing * (closed[base_joint] - model.home[base_joint]);
+  EXPECT_LT(closed_by, 0.6) << "the voxel stops the base joint";
+  ASSERT_FALSE(stops.empty());
+  for (const auto& p : stops) EXPECT_LT((p - centre).norm(), 0.01) << p.transpose();
+
+  robots::CollisionWorld object(model);
+  object.set_object(cube.vertices, cube.triangles);
+  stops.clear();
+  tsrrt::close_fingers(model, object, model.home, {}, &stops);
+  EXPECT_TRUE(stops.empty());
 }
 
 // The capsule hand with one motor pair: the thumb's joints mimic the finger's (as Romeo's fingers
