@@ -1,20 +1,23 @@
 #!/usr/bin/env python3
 """Adds the camera a failed run names to its scenario and runs it again.
 
-A run whose search mostly ran into space no camera saw ends with a next best view in its reason
-and in result.json (`next_best_view`). For every such run of a `claspplan bench` directory, this
-writes the scenario with that camera appended to `object: cameras` (next to the original, as
-`.<name>.next_view.yaml`, removed afterwards: mesh paths are relative to it), runs it with the
-same seed and time limit, and prints a table: was the clasp verified with the added camera? With
---rounds N, a run that still fails and names another camera gets that one too, up to N cameras.
+A run whose search mostly ran into space no camera saw, or whose rejected clasps mostly had
+fingers stop on it, ends with a next best view in its reason and in result.json
+(`next_best_view`). For every such run of a `claspplan bench` directory, this writes the scenario
+with that camera appended to `object: cameras` (next to the original, as
+`.<name>.seed<k>.next_view.yaml`, removed afterwards: mesh paths are relative to it), runs it with
+the same seed and time limit, and prints a table: was the clasp verified with the added camera?
+With --rounds N, a run that still fails and names another camera gets that one too, up to N
+cameras; --jobs N runs N of the failed runs at once (one per core).
 With --controller-only (for a bench run with it), the runs are the clasp controller's alone, and
 a run counts when it succeeds as `run --controller-only` does (exit 0).
 
     ./build/claspplan bench examples/scenarios/conditions/*.yaml --seeds 4 --jobs 2 \\
         --time-limit 10 --out /tmp/conditions
-    examples/scenarios/conditions/next_view_trial.py /tmp/conditions --time-limit 10
+    examples/scenarios/conditions/next_view_trial.py /tmp/conditions --time-limit 10 --jobs 2
 """
 import argparse
+import concurrent.futures
 import json
 import os
 import re
@@ -48,8 +51,8 @@ def succeeded(a, summary):
 
 def run_with(a, scenario, text, seed):
     """Runs the scenario's text as written beside it; the --json summary and the next view."""
-    copy = os.path.join(os.path.dirname(scenario),
-                        "." + os.path.basename(scenario)[:-5] + ".next_view.yaml")
+    copy = os.path.join(os.path.dirname(scenario), ".%s.seed%d.next_view.yaml" %
+                        (os.path.basename(scenario)[:-5], seed))
     try:
         with open(copy, "w") as f:
             f.write(text)
@@ -76,22 +79,30 @@ def main():
     ap.add_argument("--time-limit", type=float, default=10.0)
     ap.add_argument("--rounds", type=int, default=1,
                     help="add the next run's named camera too, up to this many cameras")
+    ap.add_argument("--jobs", type=int, default=1,
+                    help="runs at once (at most one per core: the runs have a time limit)")
     ap.add_argument("--controller-only", action="store_true",
                     help="run the clasp controller alone, as `run --controller-only`")
     a = ap.parse_args()
+    if a.jobs < 1 or a.rounds < 1:
+        sys.exit("--jobs and --rounds must be at least 1")
     runs = os.path.join(a.bench_dir, "runs")
     if not os.path.isdir(runs):
         sys.exit("%s: no runs/ directory (not a bench output)" % a.bench_dir)
-    rows = []
+    failed = []  # (run name, its result) for each run that named a camera
     for name in sorted(os.listdir(runs)):
         path = os.path.join(runs, name, "result.json")
         if not os.path.exists(path):
             continue
         with open(path) as f:
             result = json.load(f)
-        view = result.get("next_best_view")
-        if not view:
-            continue
+        if result.get("next_best_view"):
+            failed.append((name, result))
+
+    def trial(item):
+        """One failed run again, a camera added per round until it succeeds or names none."""
+        name, result = item
+        view = result["next_best_view"]
         scenario = result["scenario"]
         with open(scenario) as f:
             text = f.read()
@@ -107,8 +118,14 @@ def main():
         cams = "<br>".join("`%s`" % camera_line(v).strip().split("  #")[0][2:] for v in added)
         shares = ", ".join("%.0f%%" % (100.0 * v["visible_voxels"] / max(v["unknown_voxels"], 1))
                            for v in added)
-        rows.append((name, cams, shares, succeeded(a, after), after.get("reason", "")))
-        print("%s: %s" % (name, "ok" if rows[-1][3] else rows[-1][4]), file=sys.stderr)
+        row = (name, cams, shares, succeeded(a, after), after.get("reason", ""))
+        print("%s: %s" % (name, "ok" if row[3] else row[4]), file=sys.stderr)
+        return row
+
+    # Each run is its own chain of rounds (its scenario copy is named by its seed), so runs can go
+    # side by side; with a time limit, one per core keeps them comparable.
+    with concurrent.futures.ThreadPoolExecutor(max_workers=a.jobs) as pool:
+        rows = list(pool.map(trial, failed))
     print("| run | cameras added | expected share seen | %s with them |" %
           ("succeeded" if a.controller_only else "verified"))
     print("|---|---|---|---|")
