@@ -118,7 +118,7 @@ struct ClaspCandidate {
   bool screened_out = false;    ///< the check's screening (its first motions) found an escape
   /// Where the fingers stopped against unseen space when they closed at the open pose
   /// (close_fingers' unseen_stops): what a camera would have to see for them to close further.
-  std::vector<Eigen::Vector3d> unseen_stops;
+  std::vector<robots::EnvironmentHit> unseen_stops;
   SecureClaspReport check;
 };
 

@@ -101,8 +101,11 @@ void run_controller_only(const ClaspRequest& request, const ClaspScene& scene, c
     r.reason = "verified clasp: the fingers touched the object in the goal region and closed";
   } else {
     r.reason += "; closed there: " + insecure_reason(c.check);
-    if (!c.unseen_stops.empty())
-      suggest_view(scene.robot, r, c.unseen_stops, "the fingers stopped on unseen space");
+    if (!c.unseen_stops.empty()) {
+      std::vector<Eigen::Vector3d> stops;
+      for (const auto& hit : c.unseen_stops) stops.push_back(scene.world.contact_point(hit));
+      suggest_view(scene.robot, r, stops, "the fingers stopped on unseen space");
+    }
   }
 }
 
@@ -119,7 +122,7 @@ void run_search(const ClaspScene& scene, const Say& say, ClaspResult& r) {
   int candidates = 0, screened = 0;
   // Insecure closings whose fingers stopped against unseen space, and where (the first points).
   int rejected = 0, stopped_unseen = 0;
-  std::vector<Eigen::Vector3d> unseen_stops;
+  std::vector<robots::EnvironmentHit> unseen_stops;
   const auto close_and_verify = [&](const Eigen::VectorXd& q_goal) {
     ++candidates;
     last = close_and_check(scene, q_goal, r.timings, planning.verify_in_search);
@@ -149,8 +152,8 @@ void run_search(const ClaspScene& scene, const Say& say, ClaspResult& r) {
       ++rejected;
       if (!last.unseen_stops.empty()) {
         ++stopped_unseen;
-        for (const Eigen::Vector3d& p : last.unseen_stops)
-          if (unseen_stops.size() < ClaspProblem::kMaxContacts) unseen_stops.push_back(p);
+        for (const robots::EnvironmentHit& hit : last.unseen_stops)
+          if (unseen_stops.size() < ClaspProblem::kMaxContacts) unseen_stops.push_back(hit);
       }
     }
     return check.secure || !planning.verify_in_search;
@@ -182,7 +185,9 @@ void run_search(const ClaspScene& scene, const Say& say, ClaspResult& r) {
       suggest_view(scene.robot, r, problem.unseen_contacts());
     } else if (2 * stopped_unseen > rejected) {
       // The hand got round the bar, but the fingers closed on what no camera saw.
-      suggest_view(scene.robot, r, unseen_stops,
+      std::vector<Eigen::Vector3d> stops;
+      for (const auto& hit : unseen_stops) stops.push_back(scene.world.contact_point(hit));
+      suggest_view(scene.robot, r, stops,
                    "in " + std::to_string(stopped_unseen) + " of the " + std::to_string(rejected) +
                        " rejected clasps the fingers stopped on unseen space");
     }

@@ -9,7 +9,7 @@ namespace claspplan::tsrrt {
 
 Eigen::VectorXd close_fingers(const robots::RobotModel& model, robots::CollisionWorld& world,
                               const Eigen::VectorXd& q_start, const FingerClosingOptions& o,
-                              std::vector<Eigen::Vector3d>* unseen_stops) {
+                              std::vector<robots::EnvironmentHit>* unseen_stops) {
   Eigen::VectorXd q = q_start;
   robots::RobotData data(model);
   const Eigen::VectorXd lower = model.lower(), upper = model.upper();
@@ -38,10 +38,8 @@ Eigen::VectorXd close_fingers(const robots::RobotModel& model, robots::Collision
     for (int link : moved[finger]) {
       if (world.link_near_object(data, link, o.clearance)) return link;
       if (world.link_in_collision(data, link, &report, /*include_self=*/true)) {
-        if (unseen_stops && report.second == "unseen space") {
-          const Eigen::Vector3d at = world.contact_point(world.environment_hit());
-          if (at.allFinite()) unseen_stops->push_back(at);
-        }
+        if (unseen_stops && report.second == "unseen space")
+          unseen_stops->push_back(world.environment_hit());
         return link;
       }
     }

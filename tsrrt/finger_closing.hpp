@@ -22,10 +22,11 @@ struct FingerClosingOptions {
 /// object or its joints reach their limits; every step stays collision-free. A link that comes
 /// within the clearance (or touches the robot) stops the joints that move it, and the joints beyond
 /// it go on closing: the finger curls around what it meets. Returns the closed configuration (the
-/// path's last pose). `unseen_stops` (optional) gets a point of the unseen space (world frame) each
-/// time a link stops against it: where a camera would have to look for the fingers to close on.
+/// path's last pose). `unseen_stops` (optional) gets the hit each time a link stops against unseen
+/// space: where a camera would have to look for the fingers to close on (world.contact_point()
+/// makes a hit a point, only when one is needed).
 Eigen::VectorXd close_fingers(const robots::RobotModel& model, robots::CollisionWorld& world,
                               const Eigen::VectorXd& q, const FingerClosingOptions& options,
-                              std::vector<Eigen::Vector3d>* unseen_stops = nullptr);
+                              std::vector<robots::EnvironmentHit>* unseen_stops = nullptr);
 
 }  // namespace claspplan::tsrrt

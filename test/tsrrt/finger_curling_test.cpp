@@ -69,13 +69,16 @@ TEST(FingerClosing, AFingerStoppedByUnseenSpaceSaysWhere) {
 
   robots::CollisionWorld unseen(model);
   unseen.add_voxels({centre}, 0.006);
-  std::vector<Eigen::Vector3d> stops;
+  std::vector<robots::EnvironmentHit> stops;
   const Eigen::VectorXd closed = tsrrt::close_fingers(model, unseen, model.home, {}, &stops);
   const double closed_by =
       model.joints[base_joint].closing * (closed[base_joint] - model.home[base_joint]);
   EXPECT_LT(closed_by, 0.6) << "the voxel stops the base joint";
   ASSERT_FALSE(stops.empty());
-  for (const auto& p : stops) EXPECT_LT((p - centre).norm(), 0.01) << p.transpose();
+  for (const auto& hit : stops) {
+    const Eigen::Vector3d p = unseen.contact_point(hit);
+    EXPECT_LT((p - centre).norm(), 0.01) << p.transpose();
+  }
 
   robots::CollisionWorld object(model);
   object.set_object(cube.vertices, cube.triangles);
