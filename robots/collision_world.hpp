@@ -152,9 +152,10 @@ class CollisionWorld {
   bool motion_free(const Eigen::VectorXd& q0, const Eigen::VectorXd& q1, double resolution,
                    CollisionReport* report = nullptr);
 
-  /// What the last in_collision or motion_free touched of the environment (a box, a cylinder,
-  /// unseen space): no hit when its contact was another (the object, the robot itself), it found
-  /// none, or a later query moved the shape. Cheap to keep; contact_point() makes it a point.
+  /// What the last in_collision, link_in_collision or motion_free touched of the environment (a
+  /// box, a cylinder, unseen space): no hit when its contact was another (the object, the robot
+  /// itself), it found none, or a later query moved the shape. Cheap to keep; contact_point() makes
+  /// it a point.
   EnvironmentHit environment_hit() const;
 
   /// Where `hit` touched, world frame: FCL's contact point, or the middle of the two bounding
@@ -162,6 +163,12 @@ class CollisionWorld {
   /// all most callers need, so it is computed only on request. The hit must come from this world
   /// with its environment unchanged since.
   Eigen::Vector3d contact_point(const EnvironmentHit& hit) const;
+  /// contact_point() of each hit, in order.
+  std::vector<Eigen::Vector3d> contact_points(const std::vector<EnvironmentHit>& hits) const {
+    std::vector<Eigen::Vector3d> points;
+    for (const EnvironmentHit& hit : hits) points.push_back(contact_point(hit));
+    return points;
+  }
 
  private:
   struct Impl;

@@ -64,11 +64,7 @@ MotionCheck ClaspProblem::check_motion(const Eigen::VectorXd& q0, const Eigen::V
 }
 
 std::vector<Eigen::Vector3d> ClaspProblem::unseen_contacts() const {
-  std::vector<Eigen::Vector3d> points;
-  points.reserve(unseen_hits_.size());
-  for (const robots::EnvironmentHit& hit : unseen_hits_)
-    points.push_back(world_.contact_point(hit));
-  return points;
+  return world_.contact_points(unseen_hits_);
 }
 
 bool ClaspProblem::sample_configuration(const std::function<std::uint64_t()>& bits,

@@ -102,9 +102,8 @@ void run_controller_only(const ClaspRequest& request, const ClaspScene& scene, c
   } else {
     r.reason += "; closed there: " + insecure_reason(c.check);
     if (!c.unseen_stops.empty()) {
-      std::vector<Eigen::Vector3d> stops;
-      for (const auto& hit : c.unseen_stops) stops.push_back(scene.world.contact_point(hit));
-      suggest_view(scene.robot, r, stops, "the fingers stopped on unseen space");
+      suggest_view(scene.robot, r, scene.world.contact_points(c.unseen_stops),
+                   "the fingers stopped on unseen space");
     }
   }
 }
@@ -185,9 +184,7 @@ void run_search(const ClaspScene& scene, const Say& say, ClaspResult& r) {
       suggest_view(scene.robot, r, problem.unseen_contacts());
     } else if (2 * stopped_unseen > rejected) {
       // The hand got round the bar, but the fingers closed on what no camera saw.
-      std::vector<Eigen::Vector3d> stops;
-      for (const auto& hit : unseen_stops) stops.push_back(scene.world.contact_point(hit));
-      suggest_view(scene.robot, r, stops,
+      suggest_view(scene.robot, r, scene.world.contact_points(unseen_stops),
                    "in " + std::to_string(stopped_unseen) + " of the " + std::to_string(rejected) +
                        " rejected clasps the fingers stopped on unseen space");
     }
