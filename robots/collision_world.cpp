@@ -69,6 +69,7 @@ struct EnvItem {
   Geometry geometry;
   Eigen::Isometry3d pose;
   Box3 box;
+  bool unseen = false;  // the sensed map's unknown voxels (add_voxels)
 };
 
 Geometry make_geometry(const CollisionShape& s) {
@@ -270,7 +271,8 @@ struct CollisionWorld::Impl {
     const int link = shapes[s].link;
     if (static_link[link]) return false;
     const int e = shape_hits_environment(s);
-    if (e >= 0) {
+    // Unseen voxels lie behind the seen surface too: a shape through both met the object first.
+    if (e >= 0 && !(environment[e].unseen && shape_hits_object(s))) {
       report(r, link, environment[e].name);
       env_hit = {s, e};
       return true;
@@ -386,7 +388,7 @@ void CollisionWorld::add_voxels(const std::vector<Eigen::Vector3d>& centres, dou
   impl_->environment.push_back(
       {"unseen space",
        std::make_shared<fcl::OcTreed>(std::shared_ptr<const octomap::OcTree>(std::move(tree))),
-       Eigen::Isometry3d::Identity(), Box3{bounds.min() - half, bounds.max() + half}});
+       Eigen::Isometry3d::Identity(), Box3{bounds.min() - half, bounds.max() + half}, true});
 }
 
 void CollisionWorld::clear_environment() {

@@ -95,7 +95,9 @@ class CollisionWorld {
   int add_cylinder(const Eigen::Isometry3d& pose, double radius, double length);
   /// Cubes of edge `edge` centred at `centres` that the robot must not enter (the sensed
   /// space's unseen voxels near the object: perception/sensed_space.hpp), held as an OctoMap
-  /// OcTree that FCL collides against; reported as "unseen space". Centres should lie on a grid
+  /// OcTree that FCL collides against; reported as "unseen space", unless the same shape touches
+  /// the object too (it went through the seen surface into the unknown behind it, so it met the
+  /// object first, and a collision query says "object"). Centres should lie on a grid
   /// of spacing `edge` aligned with multiples of it (as SensedSpace's are). Throws
   /// std::invalid_argument for a non-finite centre or edge <= 0. Nothing is added for no centres.
   void add_voxels(const std::vector<Eigen::Vector3d>& centres, double edge);

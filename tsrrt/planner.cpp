@@ -98,6 +98,8 @@ std::string describe(const ConnectOutcomes& o) {
     text += o.attempts == 1 ? "; it " : "; most ";
     text += main->second + std::string(" (") + std::to_string(main->first) + ")";
   }
+  if (o.unseen_space_leads() && main->second != endings[2].second)
+    text += "; " + std::to_string(o.contact_unseen) + " ran into space no sensor saw";
   if (o.rejected > 0 && main->second != endings[6].second) {
     text += "; " + std::to_string(o.rejected) + " reached the goal but were rejected";
   }

@@ -76,10 +76,11 @@ struct ConnectOutcomes {
   int sampled_clasps = 0;
   int joined = 0;
 
-  /// Unseen space is the most common failed ending (as describe() in the reason names it: on a
-  /// tie, contact with the object or the environment comes first).
+  /// Unseen space stopped more attempts than any other failed ending but contact with the object
+  /// (which a search for a clasp on it meets however much was seen; on a tie the environment
+  /// comes first): a camera would help, and describe() names the count.
   bool unseen_space_leads() const {
-    return contact_unseen > std::max(contact_object, contact_environment) &&
+    return contact_unseen > contact_environment &&
            contact_unseen >=
                std::max({self_collision, joint_limits, stall, rejected, step_cap, time_limit});
   }

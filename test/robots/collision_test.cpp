@@ -194,6 +194,37 @@ TEST(Collision, MeshObjectAndItsPose) {
   EXPECT_EQ(report.first, "thumb_3_link");
 }
 
+// Unseen voxels fill a seen object's inside (no camera sees behind its surface): a shape through
+// both met the object first, and says so, or a search's contacts with the object would read as
+// space no sensor saw (and ask for a camera that cannot see inside the object).
+TEST(Collision, AShapeThroughTheSeenSurfaceTouchesTheObjectNotTheUnseenSpaceBehindIt) {
+  const RobotModel m = load_robot("kr5_sdh");
+  CollisionWorld world(m);
+  const test::TriMesh bar = test::bar_mesh(0.01, 0.3, 32);
+  world.set_object(bar.vertices, bar.triangles);
+  world.set_object_pose(bar_pose(0.62, 0.79));  // through the palm
+  std::vector<Eigen::Vector3d> inside;          // 5 mm voxels within the bar's 1 cm radius
+  for (double x = 0.6125; x < 0.63; x += 0.005)
+    for (double y = -0.1475; y < 0.15; y += 0.005)
+      for (double z = 0.7825; z < 0.80; z += 0.005)
+        if (std::hypot(x - 0.62, z - 0.79) < 0.009) inside.emplace_back(x, y, z);
+  world.add_voxels(inside, 0.005);
+  CollisionReport report;
+  EXPECT_TRUE(world.in_collision(m.home, &report));
+  EXPECT_EQ(report.second, "object");
+  EXPECT_EQ(report.first, "sdh_palm_link");
+  EXPECT_LT(world.environment_hit().shape, 0) << "no hit of unseen space";
+  RobotData data(m);
+  forward_kinematics(m, m.home, data);
+  EXPECT_TRUE(world.link_in_collision(data, m.link_index("sdh_palm_link"), &report));
+  EXPECT_EQ(report.second, "object");
+  // The same voxels without the seen surface in front of them: unseen space.
+  world.clear_object();
+  EXPECT_TRUE(world.in_collision(m.home, &report));
+  EXPECT_EQ(report.second, "unseen space");
+  EXPECT_EQ(report.first, "sdh_palm_link");
+}
+
 // The secure-clasp check's query: the object part of in_collision, at many object poses against a
 // few configurations, asked in an order that makes it reuse and then replace its placed shapes.
 TEST(Collision, ObjectQueryAgreesWithTheFullCheck) {
