@@ -180,12 +180,12 @@ void run_search(const ClaspScene& scene, const Say& say, ClaspResult& r) {
   if (!plan.success) {
     r.reason = plan.reason;
     // A camera for the unseen space nearest to a clasp: where the fingers stopped, when most
-    // rejected clasps had such stops (the hand got round the bar); else where the search ran into
+    // insecure clasps had such stops (the hand got round the bar); else where the search ran into
     // it, when it stopped more attempts than any obstacle but the object.
     if (2 * stopped_unseen > rejected) {
       suggest_view(scene.robot, r, scene.world.contact_points(unseen_stops),
                    "in " + std::to_string(stopped_unseen) + " of the " + std::to_string(rejected) +
-                       " rejected clasps the fingers stopped on unseen space");
+                       " insecure clasps the fingers stopped on unseen space");
     } else if (r.statistics.connect_outcomes.unseen_space_leads()) {
       suggest_view(scene.robot, r, problem.unseen_contacts());
     }

@@ -460,7 +460,7 @@ TEST(Planner, ClaspsWhoseFingersStopOnUnseenSpaceNameACamera) {
   const std::string reason = r.json()["reason"].get<std::string>();
   EXPECT_EQ(reason.find("most ran into space no sensor saw"), std::string::npos) << reason;
   EXPECT_NE(
-      reason.find("rejected clasps the fingers stopped on unseen space: a camera {position: ["),
+      reason.find("insecure clasps the fingers stopped on unseen space: a camera {position: ["),
       std::string::npos)
       << reason;
   const json result = read_json(dir.file("out/result.json"));

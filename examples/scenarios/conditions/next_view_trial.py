@@ -1,7 +1,7 @@
 #!/usr/bin/env python3
 """Adds the camera a failed run names to its scenario and runs it again.
 
-A run whose search mostly ran into space no camera saw, or whose rejected clasps mostly had
+A run whose search mostly ran into space no camera saw, or whose insecure clasps mostly had
 fingers stop on it, ends with a next best view in its reason and in result.json
 (`next_best_view`). For every such run of a `claspplan bench` directory, this writes the scenario
 with that camera appended to `object: cameras` (next to the original, as
