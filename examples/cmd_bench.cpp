@@ -37,6 +37,7 @@ struct BenchOptions {
   double time_limit = 0;
   int max_cycles = 0;
   bool controller_only = false;
+  int next_views = 0;  ///< run's --next-views, for the scenarios that render their depth
   bool json = false;
   std::string robot;  ///< replaces every scenario's robot
 };
@@ -89,6 +90,7 @@ BenchRecord run_case(const BenchCase& c, const BenchOptions& o, const fs::path& 
       scenario.planning.closable_linking = c.tolerance;
       scenario.planning.verify_in_search = false;
     }
+    if (!scenario.object.cameras.empty() && c.method.empty()) run.next_views = o.next_views;
     const RunOutcome outcome = run_scenario(scenario, run);
     r.exit_code = outcome.exit_code;
     summary = outcome.summary;
@@ -208,8 +210,9 @@ int run_bench(const BenchOptions& o) {
     }
     records = run_cases(cases, o);
     title = "claspplan bench " + (o.files.empty() ? "--suite " + o.suite : "(scenario files)") +
-            (o.controller_only ? " --controller-only" : "") + " --seeds " +
-            std::to_string(o.seeds) + (o.shard.empty() ? "" : " --shard " + o.shard);
+            (o.controller_only ? " --controller-only" : "") +
+            (o.next_views > 0 ? " --next-views " + std::to_string(o.next_views) : "") +
+            " --seeds " + std::to_string(o.seeds) + (o.shard.empty() ? "" : " --shard " + o.shard);
   }
   write_bench_report(records, o.out, title);
   nlohmann::json summary = bench_summary(records);
@@ -256,6 +259,10 @@ void add_bench_command(CLI::App& app, Action& action) {
       "file); the scenario's start must fit its arm");
   cmd->add_flag("--controller-only", o->controller_only,
                 "no planning: the clasp controller alone (success = its goal reached)");
+  cmd->add_option("--next-views", o->next_views,
+                  "as run's, for the scenarios that render their depth (object: cameras); the "
+                  "others and the baselines run as they are")
+      ->check(CLI::Range(0, 10));
   cmd->add_flag("--json", o->json, "print one JSON summary object");
   cmd->callback([o, &action] {
     if (o->suite.empty() && o->merge.empty() && o->files.empty())

@@ -1,5 +1,5 @@
 // `claspplan run SCENARIO.yaml [--out DIR] [--seed N] [--time-limit S] [--max-cycles N]
-// [--robot R] [--controller-only] [--json]`: the main job on a scenario file.
+// [--robot R] [--controller-only] [--next-views N] [--json]`: the main job on a scenario file.
 #include <cstdio>
 
 #include "examples/command.hpp"
@@ -40,6 +40,10 @@ void add_run_command(CLI::App& app, Action& action) {
       "file); the scenario's start must fit its arm");
   cmd->add_flag("--controller-only", o->run.controller_only,
                 "no planning: iterate the clasp controller toward the nearest clasp target");
+  cmd->add_option("--next-views", o->run.next_views,
+                  "when the run fails naming a camera for unseen space, render that view, add it "
+                  "and run again, up to this many added cameras (scenarios with object: cameras)")
+      ->check(CLI::Range(0, 10));
   cmd->add_flag("--no-pictures", o->no_pictures, "skip the PNG pictures");
   cmd->add_flag("--json", o->json, "print one JSON summary object instead of the text summary");
   cmd->callback([o, cmd, &action] {

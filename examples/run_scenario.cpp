@@ -162,7 +162,11 @@ tsrrt::ClaspRequest clasp_request(const Scenario& s, const RunOptions& options,
   return request;
 }
 
-RunOutcome run_scenario(const Scenario& scenario, const RunOptions& options) {
+namespace {
+
+// One run of the scenario as given; `added_views` (the cameras run_scenario added) go into its
+// result.json and summary.
+RunOutcome run_once(const Scenario& scenario, const RunOptions& options, const json& added_views) {
   const auto t_start = Clock::now();
   const std::function<void(const std::string&)> say = [&](const std::string& m) {
     if (!options.quiet) progress(m);
@@ -179,6 +183,7 @@ RunOutcome run_scenario(const Scenario& scenario, const RunOptions& options) {
                  {"robot", s.robot},
                  {"seed", s.seed},
                  {"mode", options.controller_only ? "controller" : "planner"}};
+  if (!added_views.empty()) result["added_views"] = added_views;
   json& joint_names = result["joint_names"] = json::array();
   for (const auto& j : model.joints) joint_names.push_back(j.name);
   const auto finish = [&](int exit_code, json summary) {
@@ -187,6 +192,7 @@ RunOutcome run_scenario(const Scenario& scenario, const RunOptions& options) {
     write_json(options.out_dir + "/result.json", result);
     write_json(options.out_dir + "/timing.json", timing);
     summary["out"] = options.out_dir;
+    if (!added_views.empty()) summary["added_views"] = added_views;
     return RunOutcome{exit_code, summary};
   };
 
@@ -253,11 +259,13 @@ RunOutcome run_scenario(const Scenario& scenario, const RunOptions& options) {
   result.update(scene_json(scene));
   json summary = options.controller_only ? controller_json(r, result, timing)
                                          : planner_json(r, scene, options, result, timing);
-  if (const auto& v = r.next_view)  // a camera for the unseen space the robot ran into
+  if (const auto& v = r.next_view) {  // a camera for the unseen space the robot ran into
     result["next_best_view"] = {{"position", {v->position.x(), v->position.y(), v->position.z()}},
                                 {"target", {v->target.x(), v->target.y(), v->target.z()}},
                                 {"visible_voxels", v->visible},
                                 {"unknown_voxels", v->unknown}};
+    summary["next_best_view"] = result["next_best_view"];
+  }
   const std::vector<Eigen::VectorXd>& path = r.motion.waypoints;
   if (path.empty()) {
     result["success"] = false;
@@ -287,6 +295,43 @@ RunOutcome run_scenario(const Scenario& scenario, const RunOptions& options) {
     timing["pictures"] = since(tp);
   }
   return finish(r.succeeded() ? kOk : kNoAnswer, summary);
+}
+
+}  // namespace
+
+RunOutcome run_scenario(const Scenario& scenario, const RunOptions& options) {
+  if (options.next_views < 0 || options.next_views > 10)
+    throw InputError("--next-views: " + std::to_string(options.next_views) + " is not in 0..10");
+  if (options.next_views > 0 && scenario.object.cameras.empty())
+    throw InputError(scenario.path +
+                     ": --next-views renders the camera a failed run names, so the scenario must "
+                     "render its depth (object: cameras); with depth files or clouds, capture "
+                     "from the camera the reason names and add that view");
+  // A robot that moves its camera where the reason says and looks again: the view is rendered
+  // and added to the others, and the run starts over (the same seed).
+  Scenario s = scenario;
+  json added = json::array();
+  for (;;) {
+    RunOutcome outcome = run_once(s, options, added);
+    const auto view = outcome.summary.find("next_best_view");
+    if (outcome.exit_code != kNoAnswer || view == outcome.summary.end() ||
+        static_cast<int>(added.size()) >= options.next_views || (options.stop && options.stop()))
+      return outcome;
+    const json& p = (*view)["position"];
+    const json& t = (*view)["target"];
+    s.object.cameras.emplace_back(Eigen::Vector3d(p[0], p[1], p[2]),
+                                  Eigen::Vector3d(t[0], t[1], t[2]));
+    added.push_back({{"position", p}, {"target", t}});
+    if (!options.quiet) {
+      char line[200];
+      std::snprintf(line, sizeof line,
+                    "adding the camera the reason names, {position: [%.2f, %.2f, %.2f], target: "
+                    "[%.2f, %.2f, %.2f]}, and running again (view %zu of at most %d)",
+                    p[0].get<double>(), p[1].get<double>(), p[2].get<double>(), t[0].get<double>(),
+                    t[1].get<double>(), t[2].get<double>(), added.size(), options.next_views);
+      progress(line);
+    }
+  }
 }
 
 json verification_json(const tsrrt::SecureClaspReport& v) {

@@ -24,6 +24,10 @@ struct RunOptions {
   std::optional<int> max_cycles;
   bool controller_only = false;
   tsrrt::ClaspSearch search;  ///< replaces TS-RRT when set (the benchmark's baselines)
+  /// A run that fails naming a camera (`next_best_view`) is run again with that camera added to
+  /// the scenario's rendered ones, up to this many added cameras (0: none). Scenarios whose depth
+  /// is rendered (object: cameras) only: run_scenario throws InputError for others.
+  int next_views = 0;
   bool pictures = true;
   bool quiet = false;          ///< no progress lines on stderr
   std::function<bool()> stop;  ///< ends the search early (tsrrt::ClaspRequest::stop)
@@ -40,7 +44,8 @@ tsrrt::ClaspRequest clasp_request(const Scenario& scenario, const RunOptions& op
                                   std::shared_ptr<const robots::RobotModel> robot,
                                   perception::PerceptionInputs inputs);
 
-/// Runs a scenario and writes result.json, timing.json and the pictures into options.out_dir.
+/// Runs a scenario and writes result.json, timing.json and the pictures into options.out_dir
+/// (with options.next_views, those of the last run, whose result.json lists the `added_views`).
 /// Throws InputError for malformed input (a start pose in collision included).
 RunOutcome run_scenario(const Scenario& scenario, const RunOptions& options);
 

@@ -76,11 +76,12 @@ struct ConnectOutcomes {
   int sampled_clasps = 0;
   int joined = 0;
 
-  /// Unseen space stopped more attempts than any other failed ending but contact with the object
-  /// (which a search for a clasp on it meets however much was seen; on a tie the environment
-  /// comes first): a camera would help, and describe() names the count.
+  /// Unseen space stopped at least a tenth of the attempts (fewer: a camera would change little)
+  /// and more than any other failed ending but contact with the object (which a search for a
+  /// clasp on it meets however much was seen; on a tie the environment comes first): a camera
+  /// would help, and describe() names the count.
   bool unseen_space_leads() const {
-    return contact_unseen > contact_environment &&
+    return 10 * contact_unseen >= attempts && contact_unseen > contact_environment &&
            contact_unseen >=
                std::max({self_collision, joint_limits, stall, rejected, step_cap, time_limit});
   }

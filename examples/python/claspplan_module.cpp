@@ -352,7 +352,8 @@ py::dict plan(const Robot& robot, const PlanArgs& a) {
 std::pair<int, std::string> run_file(const std::string& path, std::optional<std::uint64_t> seed,
                                      std::optional<int> max_cycles,
                                      std::optional<double> time_limit, const std::string& robot,
-                                     const std::string& out, bool pictures, bool controller_only) {
+                                     const std::string& out, bool pictures, bool controller_only,
+                                     int next_views) {
   cli::Scenario s = cli::load_scenario(path);
   if (!robot.empty()) cli::use_robot(s, robot);
   cli::RunOptions o;
@@ -362,6 +363,7 @@ std::pair<int, std::string> run_file(const std::string& path, std::optional<std:
   o.time_limit = time_limit;
   o.pictures = pictures;
   o.controller_only = controller_only;
+  o.next_views = next_views;
   o.quiet = true;
   const cli::RunOutcome r = interruptible([&](std::function<bool()> stop) {
     o.stop = std::move(stop);
@@ -525,9 +527,11 @@ PYBIND11_MODULE(_claspplan, m) {
       "run_file",
       [](const std::string& path, std::optional<std::uint64_t> seed, std::optional<int> max_cycles,
          std::optional<double> time_limit, const std::string& robot, const std::string& out,
-         bool pictures, bool controller_only) {
-        return run_file(path, seed, max_cycles, time_limit, robot, out, pictures, controller_only);
+         bool pictures, bool controller_only, int next_views) {
+        return run_file(path, seed, max_cycles, time_limit, robot, out, pictures, controller_only,
+                        next_views);
       },
       py::arg("path"), py::arg("seed"), py::arg("max_cycles"), py::arg("time_limit"),
-      py::arg("robot"), py::arg("out"), py::arg("pictures"), py::arg("controller_only"));
+      py::arg("robot"), py::arg("out"), py::arg("pictures"), py::arg("controller_only"),
+      py::arg("next_views"));
 }

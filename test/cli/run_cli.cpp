@@ -446,6 +446,24 @@ TEST(Planner, ASearchIntoUnseenSpaceNamesACameraThatWouldSeeIt) {
   EXPECT_GT(target.x(), 0.55);
   EXPECT_LT(target.x(), 0.75);
   EXPECT_GT(view["visible_voxels"].get<double>(), 0.0);
+
+  // With --next-views that camera is rendered and added, and the same search clasps the handle.
+  const CliResult again =
+      run_cli({"run", scenario("conditions/jug_yaw270_armar3"), "--seed", "3", "--max-cycles", "60",
+               "--next-views", "2", "--no-pictures", "--out", dir.file("again"), "--json"});
+  ASSERT_EQ(again.exit_code, 0) << again.out << again.err;
+  EXPECT_TRUE(again.json()["verified"].get<bool>());
+  const json added = read_json(dir.file("again/result.json")).at("added_views");
+  ASSERT_EQ(added.size(), 1u) << added;
+  EXPECT_EQ(added[0]["position"], view["position"]);
+  EXPECT_EQ(added[0]["target"], view["target"]);
+  EXPECT_EQ(again.json()["added_views"], added);
+  EXPECT_TRUE(std::filesystem::exists(dir.file("again/depth_3.yaml"))) << "the fourth view";
+  // Depth files cannot be rendered from a new place: malformed input, said in one line.
+  const CliResult files =
+      run_cli({"run", scenario("bag_1_sdh"), "--next-views", "1", "--out", dir.file("files")});
+  EXPECT_EQ(files.exit_code, 2) << files.err;
+  EXPECT_NE(files.err.find("--next-views renders the camera"), std::string::npos) << files.err;
 }
 
 // The iCub's hand gets round the pitcher's handle (turned 180 degrees, beside a second object),

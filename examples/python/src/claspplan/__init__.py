@@ -201,9 +201,11 @@ def run(
     out_dir: Optional[str] = None,
     pictures: bool = False,
     controller_only: bool = False,
+    next_views: int = 0,
 ) -> Dict[str, Any]:
     """Plans a clasp for a scenario file as `claspplan run SCENARIO --json` does, with the same
-    result for the same inputs and seed; controller_only as `--controller-only`.
+    result for the same inputs and seed; controller_only as `--controller-only`, next_views as
+    `--next-views` (0 to 10).
 
     Returns `run --json`'s summary with, added: exit_code (0 a verified clasp, 1 none), result
     (result.json), path (M x dof joint waypoints, start to the closed hand), final_q (dof,) and
@@ -214,7 +216,7 @@ def run(
     with tempfile.TemporaryDirectory(prefix="claspplan-") as tmp:
         out = out_dir or tmp
         code, text = _claspplan.run_file(os.fspath(scenario), seed, max_cycles, time_limit, name,
-                                         out, pictures, controller_only)
+                                         out, pictures, controller_only, next_views)
         summary = json.loads(text)
         with open(os.path.join(out, "result.json"), encoding="utf-8") as f:
             result = json.load(f)

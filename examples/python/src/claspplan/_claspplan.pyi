@@ -88,4 +88,5 @@ def run_file(
     out: str,
     pictures: bool,
     controller_only: bool,
+    next_views: int,
 ) -> Tuple[int, str]: ...
