@@ -181,7 +181,7 @@ void run_search(const ClaspScene& scene, const Say& say, ClaspResult& r) {
     r.reason = plan.reason;
     // A camera for the unseen space nearest to a clasp: where the fingers stopped, when most
     // insecure clasps had such stops (the hand got round the bar); else where the search ran into
-    // it, when it stopped more attempts than any obstacle but the object.
+    // it, when it stopped a tenth of the attempts and more than any obstacle but the object.
     if (2 * stopped_unseen > rejected) {
       suggest_view(scene.robot, r, scene.world.contact_points(unseen_stops),
                    "in " + std::to_string(stopped_unseen) + " of the " + std::to_string(rejected) +
