@@ -272,13 +272,14 @@ struct CollisionWorld::Impl {
     if (static_link[link]) return false;
     const int e = shape_hits_environment(s);
     // Unseen voxels lie behind the seen surface too: a shape through both met the object first.
-    if (e >= 0 && !(environment[e].unseen && shape_hits_object(s))) {
-      report(r, link, environment[e].name);
-      env_hit = {s, e};
+    const bool object = (e < 0 || environment[e].unseen) && shape_hits_object(s);
+    if (object) {
+      report(r, link, "object");
       return true;
     }
-    if (shape_hits_object(s)) {
-      report(r, link, "object");
+    if (e >= 0) {
+      report(r, link, environment[e].name);
+      env_hit = {s, e};
       return true;
     }
     return false;
