@@ -186,6 +186,7 @@ RunOutcome run_once(const Scenario& scenario, const RunOptions& options, const j
   if (!added_views.empty()) result["added_views"] = added_views;
   json& joint_names = result["joint_names"] = json::array();
   for (const auto& j : model.joints) joint_names.push_back(j.name);
+  std::optional<perception::ViewSuggestion> next_view;  // the camera the run names, if any
   const auto finish = [&](int exit_code, json summary) {
     timing["total"] = since(t_start);
     result["reason"] = summary["reason"];
@@ -193,7 +194,7 @@ RunOutcome run_once(const Scenario& scenario, const RunOptions& options, const j
     write_json(options.out_dir + "/timing.json", timing);
     summary["out"] = options.out_dir;
     if (!added_views.empty()) summary["added_views"] = added_views;
-    return RunOutcome{exit_code, summary};
+    return RunOutcome{exit_code, summary, next_view};
   };
 
   // The inputs are read (and validated) before any progress line, so that a bad file gives a
@@ -211,6 +212,7 @@ RunOutcome run_once(const Scenario& scenario, const RunOptions& options, const j
   tsrrt::ClaspRequest request = clasp_request(s, options, robot, std::move(inputs));
   if (!options.quiet) request.progress = say;
   const tsrrt::ClaspResult r = tsrrt::plan_clasp(request);
+  next_view = r.next_view;
 
   timing["perception"] = input_seconds + r.timings.perception;
   timing["scene"] = r.timings.scene;
@@ -313,23 +315,16 @@ RunOutcome run_scenario(const Scenario& scenario, const RunOptions& options) {
   json added = json::array();
   for (;;) {
     RunOutcome outcome = run_once(s, options, added);
-    const auto view = outcome.summary.find("next_best_view");
-    if (outcome.exit_code != kNoAnswer || view == outcome.summary.end() ||
+    const std::optional<perception::ViewSuggestion>& view = outcome.next_view;
+    if (outcome.exit_code != kNoAnswer || !view ||
         static_cast<int>(added.size()) >= options.next_views || (options.stop && options.stop()))
       return outcome;
-    const json& p = (*view)["position"];
-    const json& t = (*view)["target"];
-    s.object.cameras.emplace_back(Eigen::Vector3d(p[0], p[1], p[2]),
-                                  Eigen::Vector3d(t[0], t[1], t[2]));
-    added.push_back({{"position", p}, {"target", t}});
+    s.object.cameras.emplace_back(view->position, view->target);
+    added.push_back({{"position", to_json(view->position)}, {"target", to_json(view->target)}});
     if (!options.quiet) {
-      char line[200];
-      std::snprintf(line, sizeof line,
-                    "adding the camera the reason names, {position: [%.2f, %.2f, %.2f], target: "
-                    "[%.2f, %.2f, %.2f]}, and running again (view %zu of at most %d)",
-                    p[0].get<double>(), p[1].get<double>(), p[2].get<double>(), t[0].get<double>(),
-                    t[1].get<double>(), t[2].get<double>(), added.size(), options.next_views);
-      progress(line);
+      progress("adding " + perception::view_text(*view) + ", and running again (view " +
+               std::to_string(added.size()) + " of at most " + std::to_string(options.next_views) +
+               ")");
     }
   }
 }

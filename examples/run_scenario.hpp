@@ -12,6 +12,7 @@
 
 #include "core/input_error.hpp"
 #include "examples/scenario.hpp"
+#include "perception/next_view.hpp"
 
 namespace claspplan::cli {
 
@@ -36,6 +37,8 @@ struct RunOptions {
 struct RunOutcome {
   int exit_code = 0;       ///< 0 verified clasp (or controller goal reached), 1 no answer
   nlohmann::json summary;  ///< what `run --json` prints
+  /// The camera a failed run names (summary's `next_best_view`), if any.
+  std::optional<perception::ViewSuggestion> next_view;
 };
 
 /// The planner's request for a scenario, its robot and its read inputs: the run options replace
