@@ -101,6 +101,7 @@ class ViewCaster {
  public:
   ViewCaster(const DepthView& view, double half_edge)
       : view_(view),
+        half_edge_(half_edge),
         R_(view.camera.T_world_camera.linear().transpose()),
         t_(-R_ * view.camera.T_world_camera.translation()) {
     for (int c = 0; c < 8; ++c)
@@ -138,19 +139,63 @@ class ViewCaster {
       const float d = reading(iu, iv);
       if (d > 0.0f && d >= z0 - tolerance && d <= z1 + tolerance) return Sensed::kOccupied;
     }
-    // Free only when the whole footprint is in the image and every ray in it went past the voxel.
+    // Free only when the whole footprint is in the image and every ray through the voxel went past
+    // it: at once when every ray of the footprint did, else ray by ray.
     if (pu0 < 0 || pv0 < 0 || pu1 >= camera.width || pv1 >= camera.height) return Sensed::kUnknown;
-    const auto [nearest, valid] = footprint(static_cast<int>(pu0), static_cast<int>(pu1),
-                                            static_cast<int>(pv0), static_cast<int>(pv1));
-    return (camera.no_reading_is_free || valid >= kMinValidShare) && nearest > z1
-               ? Sensed::kFree
-               : Sensed::kUnknown;
+    const int iu0 = static_cast<int>(pu0), iu1 = static_cast<int>(pu1);
+    const int iv0 = static_cast<int>(pv0), iv1 = static_cast<int>(pv1);
+    const auto [nearest, valid] = footprint(iu0, iu1, iv0, iv1);
+    if (!camera.no_reading_is_free && valid < kMinValidShare) return Sensed::kUnknown;
+    if (nearest > z1) return Sensed::kFree;
+    return rays_pass(q, iu0, iu1, iv0, iv1) ? Sensed::kFree : Sensed::kUnknown;
   }
 
  private:
   float reading(int u, int v) const {
     const float d = view_.image.at(u, v);
     return std::isfinite(d) && d > 0.0f ? d : 0.0f;
+  }
+
+  // The exact test behind the footprint's: every ray through the voxel's cube (centre q, camera
+  // frame) read a depth beyond where it leaves the cube. A pixel's ray is its centre's, (u', v', 1)
+  // z in the camera frame (z is the depth), as a depth camera measures along it. The footprint's
+  // rectangle also holds pixels whose rays pass beside the cube (its image is a hexagon), and the
+  // far corner's depth z1 lies beyond where most rays leave it: beside a silhouette or over a
+  // slanted surface the footprint test alone leaves a free voxel unknown, a skin of up to a voxel
+  // around what was seen. Pixels without a reading are left out as in the footprint; a voxel
+  // that no ray with a reading crosses stays unknown.
+  bool rays_pass(const Eigen::Vector3d& q, int u0, int u1, int v0, int v1) const {
+    constexpr int kMaxPixels = 1024;  // a voxel this large in the image is left unknown
+    if ((u1 - u0 + 1) * (v1 - v0 + 1) > kMaxPixels) return false;
+    const CameraModel& camera = view_.camera;
+    const double half = half_edge_;
+    const Eigen::Matrix3d to_cube = R_.transpose();  // camera -> the cube's (world) axes
+    const Eigen::Vector3d origin = -(to_cube * q);   // the camera, from the cube's centre
+    int crossing = 0;
+    for (int v = v0; v <= v1; ++v)
+      for (int u = u0; u <= u1; ++u) {
+        const Eigen::Vector3d ray = to_cube * Eigen::Vector3d((u - camera.cx) / camera.fx,
+                                                              (v - camera.cy) / camera.fy, 1.0);
+        double in = 0.0, out = INFINITY;
+        for (int i = 0; i < 3 && in < out; ++i) {
+          if (std::abs(ray[i]) < 1e-12) {
+            if (std::abs(origin[i]) > half) out = -INFINITY;
+            continue;
+          }
+          double t0 = (-half - origin[i]) / ray[i], t1 = (half - origin[i]) / ray[i];
+          if (t0 > t1) std::swap(t0, t1);
+          in = std::max(in, t0), out = std::min(out, t1);
+        }
+        if (!(in < out)) continue;  // this ray passes beside the cube
+        const float d = reading(u, v);
+        if (d == 0.0f) {
+          if (!camera.no_reading_is_free) continue;
+        } else if (d <= out) {
+          return false;
+        }
+        ++crossing;
+      }
+    return crossing > 0;
   }
 
   // The nearest reading and the share of pixels with one over [u0, u1] x [v0, v1].
@@ -167,6 +212,7 @@ class ViewCaster {
   }
 
   DepthView view_;
+  double half_edge_;
   Eigen::Matrix3d R_;  // camera <- world
   Eigen::Vector3d t_;
   std::array<Eigen::Vector3d, 8> corner_;  // the voxel's corners from its centre, camera frame
@@ -177,13 +223,17 @@ class ViewCaster {
 
 struct SensedSpace::Casting {
   std::vector<ViewCaster> views;
+  // A finer grid's coarser one (refined()): every part of a voxel seen free there is free. The
+  // finer voxel's own rays may not say so: one between two pixels' rays is crossed by none.
+  std::shared_ptr<const SensedSpace> coarser;
   std::once_flag once;
   std::atomic<bool> done{false};
   std::vector<std::uint8_t> cells;  // x fastest, then y, then z
 
   // Every view's verdict on the voxel centred at p: occupied if any saw a surface in it, else
-  // free if any saw through it, else unknown.
+  // free if any saw through it, else unknown (a finer grid's voxel: free in a free coarser one).
   Sensed classify(const Eigen::Vector3d& p, double tolerance) const {
+    if (coarser && coarser->at(p) == Sensed::kFree) return Sensed::kFree;
     Sensed s = Sensed::kUnknown;
     for (const auto& v : views) {
       const Sensed here = v.classify(p, tolerance);
@@ -243,6 +293,7 @@ SensedSpace SensedSpace::refined(const Eigen::AlignedBox3d& box, double resoluti
   fine.box_ = Eigen::AlignedBox3d(lo, hi);
   fine.dims_ = coarse * split;
   fine.casting_ = std::make_shared<Casting>();
+  fine.casting_->coarser = std::make_shared<const SensedSpace>(*this);
   for (const ViewCaster& v : casting_->views)
     fine.casting_->views.emplace_back(v.view(), 0.5 * fine.resolution_);
   return fine;

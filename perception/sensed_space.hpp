@@ -9,11 +9,12 @@
 // space on both sides (loops.hpp).
 //
 // The model is built by casting every camera's rays, read backwards: a voxel's centre is projected
-// into each depth image (a pinhole camera, camera.hpp), and the pixels covering the voxel's
-// footprint say whether their rays passed it (the nearest of their depths lies beyond the voxel),
-// ended in it (a depth within the voxel), or ended before it. This is exact for the pixel grid,
-// costs one projection per voxel and view (no ray traversal), and gives the same answer on any
-// number of threads. Pixels without a reading (0: out of range, absorbed, shadowed by the
+// into each depth image (a pinhole camera, camera.hpp), and the pixels whose rays cross the voxel
+// say whether they passed it (each depth lies beyond where its ray leaves the voxel's cube), ended
+// in it (the centre's depth within the voxel), or ended before it. This is exact for the pixel
+// grid, costs one projection per voxel and view (no ray traversal; a voxel whose footprint
+// rectangle all reads beyond its far corner needs no ray of its own), and gives the same answer
+// on any number of threads. Pixels without a reading (0: out of range, absorbed, shadowed by the
 // projector) say nothing: what lies along them is unknown. Only in a rendering of a complete
 // synthetic scene (CameraModel::no_reading_is_free) did such a ray see nothing up to any range.
 //
