@@ -335,6 +335,25 @@ cv::Mat time_per_case(const std::vector<BenchRecord>& records) {
   return img;
 }
 
+// The verified paths whose scene was rendered, against that scene (truth_check.hpp).
+std::string truth_markdown(const std::vector<BenchRecord>& all) {
+  std::vector<const BenchRecord*> checked, touching;
+  for (const auto& r : all) {
+    if (!r.truth_checked) continue;
+    checked.push_back(&r);
+    if (!r.truth_contact.empty()) touching.push_back(&r);
+  }
+  if (checked.empty()) return "";
+  std::ostringstream md;
+  md << "\nAgainst the scene the depth was rendered from (the true mesh, boxes and clutter; no "
+        "robot point more than 1 mm between checks, the fingers' closing left out): "
+     << touching.size() << " of " << checked.size() << " verified paths touch it.\n";
+  for (const BenchRecord* r : touching)
+    md << "- " << r->name << (r->method.empty() ? "" : " (" + r->method + ")") << " seed "
+       << r->seed << ": " << r->truth_contact << "\n";
+  return md.str();
+}
+
 std::string report_markdown(const std::vector<BenchRecord>& all, const std::string& title) {
   const std::vector<BenchRecord> records = main_runs(all);
   struct Row {
@@ -382,6 +401,7 @@ std::string report_markdown(const std::vector<BenchRecord>& all, const std::stri
        << row.cases << " | " << fixed(median(row.seconds), 2) << " | " << spread << " | "
        << fixed(median(row.counts), 0) << " | " << reason << " |\n";
   }
+  md << truth_markdown(all);
   md << "\nFiles: cases.csv (one row per run), cases.json (read by `claspplan bench --merge`), "
         "linking_scatter.png (paper Fig. 6), time_per_case.png.\n";
   const auto sweep = sweep_runs(all);
@@ -424,7 +444,9 @@ nlohmann::json record_json(const BenchRecord& r) {
           {"min_virtual_linking", number(r.min_virtual_linking)},
           {"max_virtual_linking", number(r.max_virtual_linking)},
           {"final_linking", number(r.final_linking)},
-          {"reason", r.reason}};
+          {"reason", r.reason},
+          {"truth_checked", r.truth_checked},
+          {"truth_contact", r.truth_contact}};
 }
 
 BenchRecord record_from_json(const nlohmann::json& j) {
@@ -454,6 +476,8 @@ BenchRecord record_from_json(const nlohmann::json& j) {
     r.max_virtual_linking = number_from(j, "max_virtual_linking");
     r.final_linking = number_from(j, "final_linking");
     r.reason = j.at("reason").get<std::string>();
+    r.truth_checked = j.value("truth_checked", false);  // not in the records of older versions
+    r.truth_contact = j.value("truth_contact", std::string());
   } catch (const nlohmann::json::exception& e) {
     throw InputError(std::string("bench case record: ") + e.what());
   }
@@ -505,7 +529,7 @@ void write_bench_report(const std::vector<BenchRecord>& records, const std::stri
          "nodes,seconds,"
          "perception,planning,"
          "closing,verification,total,min_open_linking,max_open_linking,min_virtual_linking,"
-         "max_virtual_linking,final_linking,reason\n";
+         "max_virtual_linking,final_linking,reason,truth_checked,truth_contact\n";
   for (const auto& r : records) {
     all.push_back(record_json(r));
     csv << csv_text(r.name) << ',' << csv_text(r.scenario) << ',' << r.seed << ','
@@ -516,7 +540,8 @@ void write_bench_report(const std::vector<BenchRecord>& records, const std::stri
         << fixed(r.verification, 4) << ',' << fixed(r.total, 4) << ','
         << fixed(r.min_open_linking, 4) << ',' << fixed(r.max_open_linking, 4) << ','
         << fixed(r.min_virtual_linking, 4) << ',' << fixed(r.max_virtual_linking, 4) << ','
-        << fixed(r.final_linking, 4) << ',' << csv_text(r.reason) << '\n';
+        << fixed(r.final_linking, 4) << ',' << csv_text(r.reason) << ',' << r.truth_checked << ','
+        << csv_text(r.truth_contact) << '\n';
   }
   write_text(dir / "cases.json", all.dump(2) + "\n");
   write_text(dir / "cases.csv", csv.str());

@@ -32,6 +32,10 @@ struct BenchRecord {
   double min_open_linking, max_open_linking, min_virtual_linking, max_virtual_linking;
   double final_linking;  ///< mean VLk (eq. 4) of the final pose, the fingers closed; NaN if none
   std::string reason;
+  /// A verified path checked against the scene its depth was rendered from (truth_check.hpp):
+  /// truth_contact names the first contact ("" none).
+  bool truth_checked = false;
+  std::string truth_contact;
   BenchRecord();
   /// What the run was for: a verified clasp, or with the controller alone its goal.
   bool achieved() const { return controller_only ? success : verified; }

@@ -18,6 +18,7 @@
 #include "examples/grasp_rrt.hpp"
 #include "examples/ompl_two_phase.hpp"
 #include "examples/run_scenario.hpp"
+#include "examples/truth_check.hpp"
 #include "tsrrt/elapsed.hpp"
 
 namespace claspplan::cli {
@@ -83,15 +84,16 @@ BenchRecord run_case(const BenchCase& c, const BenchOptions& o, const fs::path& 
     };
   }
   nlohmann::json summary;
+  std::optional<Scenario> scenario;
   try {
-    Scenario scenario = load_scenario(c.scenario);
-    if (!o.robot.empty()) use_robot(scenario, o.robot);
+    scenario = load_scenario(c.scenario);
+    if (!o.robot.empty()) use_robot(*scenario, o.robot);
     if (c.tolerance > 0) {  // the sweep: the first goal node at this tolerance, verified after
-      scenario.planning.closable_linking = c.tolerance;
-      scenario.planning.verify_in_search = false;
+      scenario->planning.closable_linking = c.tolerance;
+      scenario->planning.verify_in_search = false;
     }
-    if (!scenario.object.cameras.empty() && c.method.empty()) run.next_views = o.next_views;
-    const RunOutcome outcome = run_scenario(scenario, run);
+    if (!scenario->object.cameras.empty() && c.method.empty()) run.next_views = o.next_views;
+    const RunOutcome outcome = run_scenario(*scenario, run);
     r.exit_code = outcome.exit_code;
     summary = outcome.summary;
   } catch (const InputError& e) {
@@ -125,6 +127,17 @@ BenchRecord run_case(const BenchCase& c, const BenchOptions& o, const fs::path& 
     r.max_open_linking = value_or(v, "max_open_linking", r.max_open_linking);
     r.min_virtual_linking = value_or(v, "min_virtual_linking", r.min_virtual_linking);
     r.max_virtual_linking = value_or(v, "max_virtual_linking", r.max_virtual_linking);
+  }
+  if (!r.verified) return r;
+  try {
+    const TruthContact truth = check_path_against_truth(*scenario, (dir / "result.json").string());
+    r.truth_checked = truth.checked;
+    if (truth.touches)
+      r.truth_contact = truth.what + " (segment " + std::to_string(truth.segment + 1) + " of " +
+                        std::to_string(truth.segments) + ")";
+  } catch (const std::exception& e) {
+    r.exit_code = kInternalError;
+    r.reason = std::string("internal error: the path against the rendered scene: ") + e.what();
   }
   return r;
 }

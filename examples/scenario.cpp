@@ -345,31 +345,13 @@ void read_controller(const Reader& ctl, Scenario& s) {
 // The `planner` section: TS-RRT, the linking goal, closing and verification (their seeds are the
 // scenario's).
 void read_planner(const Reader& pl, const std::string& path, Scenario& s) {
-  pl.only({"random_probability",
-           "pre_expansions",
-           "max_cycles",
-           "time_limit",
-           "extend_steps",
-           "connect_steps",
-           "stall_steps",
-           "linking_scale",
-           "sample_min",
-           "sample_max",
-           "goal_linking",
-           "position_tolerance",
-           "collision_resolution",
-           "prune_attempts",
-           "closing_step",
-           "closing_clearance",
-           "verify_sequences",
-           "verify_motions",
-           "verify_in_search",
-           "backoff_steps",
-           "detour_steps",
-           "closable_linking",
-           "sample_probability",
-           "sample_after",
-           "joint_step"});
+  pl.only({"random_probability",   "pre_expansions",    "max_cycles",         "time_limit",
+           "extend_steps",         "connect_steps",     "stall_steps",        "linking_scale",
+           "sample_min",           "sample_max",        "goal_linking",       "position_tolerance",
+           "collision_resolution", "collision_travel",  "approach_clearance", "prune_attempts",
+           "closing_step",         "closing_clearance", "verify_sequences",   "verify_motions",
+           "verify_in_search",     "backoff_steps",     "detour_steps",       "closable_linking",
+           "sample_probability",   "sample_after",      "joint_step"});
   auto& o = s.planning;
   auto& tp = o.planner;
   tp.random_probability = pl.number("random_probability", tp.random_probability, 0.0, 1.0);
@@ -401,6 +383,8 @@ void read_planner(const Reader& pl, const std::string& path, Scenario& s) {
   o.closable_linking = pl.number("closable_linking", o.closable_linking, 0.0, 1.0);
   o.position_tolerance = pl.number("position_tolerance", o.position_tolerance, 0.0, 10.0);
   o.collision_resolution = pl.number("collision_resolution", o.collision_resolution, 1e-4, 1.0);
+  o.collision_travel = pl.number("collision_travel", o.collision_travel, 0.0, 1.0);
+  o.approach.clearance = pl.number("approach_clearance", o.approach.clearance, 0.0, 0.05);
   o.prune_attempts = pl.integer("prune_attempts", o.prune_attempts, 0, 1000000);
   o.closing.step = pl.number("closing_step", o.closing.step, 1e-4, 0.5);
   o.closing.clearance = pl.number("closing_clearance", o.closing.clearance, 0.0, 0.1);
@@ -449,18 +433,8 @@ Scenario read_scenario(const YamlField& root, const std::string& path,
   return s;
 }
 
-perception::PerceptionInputs build_inputs(const Scenario& s) {
-  const ObjectSpec& o = s.object;
-  perception::PerceptionInputs in;
-  if (!o.depth.empty()) {
-    std::vector<std::string> images, cameras;
-    for (const auto& [png, camera] : o.depth) images.push_back(png), cameras.push_back(camera);
-    return perception::load_inputs(images, cameras);
-  }
-  if (!o.clouds.empty()) {
-    for (const auto& file : o.clouds) perception::add_cloud(in, file);
-    return in;
-  }
+// A mesh or shape object at its pose, in the world frame.
+TriangleMesh object_mesh(const ObjectSpec& o) {
   TriangleMesh mesh;
   if (!o.mesh.empty()) {
     const perception::PerceptionInputs file = perception::load_inputs({o.mesh}, {});
@@ -482,14 +456,27 @@ perception::PerceptionInputs build_inputs(const Scenario& s) {
     mesh = objects::holed_plate(plate);
   }
   mesh = transformed(mesh, o.pose);
+  return mesh;
+}
+
+perception::PerceptionInputs build_inputs(const Scenario& s) {
+  const ObjectSpec& o = s.object;
+  perception::PerceptionInputs in;
+  if (!o.depth.empty()) {
+    std::vector<std::string> images, cameras;
+    for (const auto& [png, camera] : o.depth) images.push_back(png), cameras.push_back(camera);
+    return perception::load_inputs(images, cameras);
+  }
+  if (!o.clouds.empty()) {
+    for (const auto& file : o.clouds) perception::add_cloud(in, file);
+    return in;
+  }
   if (o.cameras.empty()) {
-    in.meshes.push_back(mesh);
+    in.meshes.push_back(object_mesh(o));
     in.view_positions = o.views;
     return in;
   }
-  // What a depth camera sees: the object and the environment.
-  append_mesh(mesh, boxes_mesh(s.boxes));
-  append_mesh(mesh, boxes_mesh(o.clutter));  // seen, but not told to the planner
+  const TriangleMesh mesh = *rendered_scene(s);
   for (std::size_t i = 0; i < o.cameras.size(); ++i) {
     perception::DepthView view;
     view.camera = objects::kinect_camera(o.cameras[i].first, o.cameras[i].second);
@@ -527,6 +514,16 @@ TriangleMesh boxes_mesh(const std::vector<EnvironmentBox>& boxes) {
     append_mesh(out, transformed(m, b.pose));
   }
   return out;
+}
+
+std::optional<TriangleMesh> rendered_scene(const Scenario& s) {
+  if (s.object.cameras.empty() || !s.object.depth.empty() || !s.object.clouds.empty()) return {};
+  return as_input_error([&] {
+    TriangleMesh mesh = object_mesh(s.object);
+    append_mesh(mesh, boxes_mesh(s.boxes));
+    append_mesh(mesh, boxes_mesh(s.object.clutter));  // seen, but not told to the planner
+    return mesh;
+  });
 }
 
 perception::PerceptionInputs scenario_inputs(const Scenario& s) {

@@ -106,6 +106,11 @@ Scenario load_scenario_text(const std::string& text, const std::string& path,
 /// The boxes as one triangle mesh (what depth cameras see of the environment).
 TriangleMesh boxes_mesh(const std::vector<EnvironmentBox>& boxes);
 
+/// What a scenario's synthetic depth cameras see (object: cameras): its mesh or shape at its
+/// pose, the environment boxes and the clutter, in the world frame. The truth a planned path can
+/// be checked against; none for depth files and clouds, whose truth is unknown.
+std::optional<TriangleMesh> rendered_scene(const Scenario& scenario);
+
 /// Builds the perception inputs the scenario's object describes (files read, shapes meshed,
 /// synthetic depth images rendered).
 perception::PerceptionInputs scenario_inputs(const Scenario& scenario);

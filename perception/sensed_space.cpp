@@ -365,6 +365,25 @@ std::vector<Eigen::Vector3d> SensedSpace::blocked_voxels(
   return out;
 }
 
+std::vector<Eigen::Vector3d> SensedSpace::voxels_holding(
+    const std::vector<Eigen::Vector3d>& points) const {
+  std::vector<long> index;
+  for (const Eigen::Vector3d& p : points) {
+    if (!box_.contains(p)) continue;
+    const Eigen::Vector3i v =
+        ((p - box_.min()) / resolution_).array().floor().cast<int>().min(dims_.array() - 1).max(0);
+    index.push_back((static_cast<long>(v.z()) * dims_.y() + v.y()) * dims_.x() + v.x());
+  }
+  std::sort(index.begin(), index.end());
+  index.erase(std::unique(index.begin(), index.end()), index.end());
+  std::vector<Eigen::Vector3d> out;
+  for (const long n : index)
+    out.push_back(centre(static_cast<int>(n % dims_.x()),
+                         static_cast<int>(n / dims_.x() % dims_.y()),
+                         static_cast<int>(n / (static_cast<long>(dims_.x()) * dims_.y()))));
+  return out;
+}
+
 Sensed sensed_at(const SensedSpace& space, const SensedSpace* finer, const Eigen::Vector3d& p) {
   return finer && finer->region().contains(p) ? finer->at(p) : space.at(p);
 }

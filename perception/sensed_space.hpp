@@ -99,9 +99,14 @@ class SensedSpace {
   /// The centres of the voxels the robot must not enter: every unknown voxel of the region, and
   /// occupied voxels at or below `support` (n.p + c <= margin, n up: the table the object stands
   /// on, whose surface the object's own mesh leaves out). Measured surfaces above it are modelled
-  /// by the depth surface mesh (depth_surface.hpp), which is exact, and are not repeated here.
+  /// by the depth surface mesh (depth_surface.hpp) and are not repeated here; the measurements
+  /// that mesh leaves out (a rod too thin for its grid) are not here either: a planner adds them.
   std::vector<Eigen::Vector3d> blocked_voxels(
       const std::optional<Eigen::Vector4d>& support = std::nullopt, double margin = 0.005) const;
+
+  /// The centres of the voxels holding `points`, each once, in grid order (points outside the
+  /// region are skipped).
+  std::vector<Eigen::Vector3d> voxels_holding(const std::vector<Eigen::Vector3d>& points) const;
 
   /// Voxel centre of grid index (i, j, k).
   Eigen::Vector3d centre(int i, int j, int k) const {

@@ -15,6 +15,7 @@
 #include <fcl/narrowphase/distance.h>
 #include <octomap/OcTree.h>
 
+#include "robots/motion_sampling.hpp"
 #include "robots/object_geometry.hpp"
 #include "robots/triangle_tree.hpp"
 
@@ -149,6 +150,8 @@ struct CollisionWorld::Impl {
   // stays placed (tf, box) until the next check.
   std::pair<int, int> env_hit{-1, -1};
 
+  Eigen::VectorXd reach;  // motion_reach(model), once set_motion_travel() asks for it
+  double travel = 0.0;
   bool self_enabled = true;
   bool hand_self_enabled = true;
   std::vector<std::pair<int, int>> link_pairs;   // self-collision link pairs
@@ -560,6 +563,13 @@ Eigen::Vector3d CollisionWorld::contact_point(const EnvironmentHit& hit) const {
                            shape.primitive.bounds(hit.shape_pose), item.box);
 }
 
+void CollisionWorld::set_motion_travel(double metres) {
+  if (!(metres >= 0) || !std::isfinite(metres))
+    throw std::invalid_argument("set_motion_travel: the distance must be finite and >= 0");
+  if (metres > 0 && impl_->reach.size() == 0) impl_->reach = motion_reach(impl_->model);
+  impl_->travel = metres;
+}
+
 bool CollisionWorld::motion_free(const Eigen::VectorXd& q0, const Eigen::VectorXd& q1,
                                  double resolution, CollisionReport* report) {
   Impl& m = *impl_;
@@ -569,30 +579,11 @@ bool CollisionWorld::motion_free(const Eigen::VectorXd& q0, const Eigen::VectorX
                                 std::to_string(dof) + " values");
   if (!q0.allFinite() || !q1.allFinite())
     throw std::invalid_argument(m.model.name + ": motion_free: q is not finite");
-  if (!(resolution > 0) || !std::isfinite(resolution))
-    throw std::invalid_argument("motion_free: resolution must be > 0");
-  const double span = (q1 - q0).cwiseAbs().maxCoeff();
-  if (span / resolution > 1e6)
-    throw std::invalid_argument(
-        "motion_free: more than a million samples; use a coarser resolution");
-  const int steps = std::max(1, static_cast<int>(std::ceil(span / resolution)));
-  auto free_at = [&](int k) {
-    const double t = static_cast<double>(k) / steps;
-    forward_kinematics(m.model, q0 + t * (q1 - q0), m.scratch);
+  const int steps = motion_steps(m.reach, m.travel, q0, q1, resolution);
+  return all_samples_free(steps, [&](int k) {
+    forward_kinematics(m.model, q0 + (static_cast<double>(k) / steps) * (q1 - q0), m.scratch);
     return !m.check(m.scratch, report);
-  };
-  if (!free_at(steps) || !free_at(0)) return false;
-  // Coarse to fine: breadth-first over intervals, checking each midpoint; every sample once.
-  std::vector<std::pair<int, int>> queue{{0, steps}};
-  for (size_t head = 0; head < queue.size(); ++head) {
-    const auto [lo, hi] = queue[head];
-    if (hi - lo < 2) continue;
-    const int mid = lo + (hi - lo) / 2;
-    if (!free_at(mid)) return false;
-    queue.emplace_back(lo, mid);
-    queue.emplace_back(mid, hi);
-  }
-  return true;
+  });
 }
 
 }  // namespace claspplan::robots

@@ -42,6 +42,20 @@ std::vector<Eigen::Vector3d> clasp_approaches(const servo::Points& loop, const C
   return points;
 }
 
+namespace {
+
+bool hand_near_object(const robots::RobotModel& model, robots::CollisionWorld& world,
+                      const robots::RobotData& data, double clearance) {
+  if (!(clearance > 0)) return false;
+  for (std::size_t l = 0; l < model.links.size(); ++l)
+    if (model.links[l].hand && !model.links[l].shapes.empty() &&
+        world.link_near_object(data, static_cast<int>(l), clearance))
+      return true;
+  return false;
+}
+
+}  // namespace
+
 std::vector<Eigen::VectorXd> approach_until_contact(const robots::RobotModel& model,
                                                     robots::CollisionWorld& world,
                                                     const Eigen::VectorXd& q,
@@ -57,9 +71,11 @@ std::vector<Eigen::VectorXd> approach_until_contact(const robots::RobotModel& mo
   // The least squares' damping, and how far from the line (m, rad) a step may end.
   constexpr double kDamping = 1e-3, kLineTolerance = 1e-3;
   Eigen::VectorXd current = q;
-  const int steps = static_cast<int>(std::floor(o.distance / o.step + 1e-9));
-  for (int k = 1; k <= steps; ++k) {
-    const Eigen::Vector3d goal = start + (k * o.step) * direction;
+  // Full steps while they are free; the step that is not is tried at a half and a quarter (the
+  // hand ends within a quarter step of where it would touch or come within the clearance).
+  double done = 0.0, step = o.step;
+  while (done + step <= o.distance + 1e-9) {
+    const Eigen::Vector3d goal = start + (done + step) * direction;
     Eigen::VectorXd next = current;
     Eigen::Matrix<double, 6, 1> error;
     for (int iteration = 0;; ++iteration) {  // Newton steps, damped least squares
@@ -78,10 +94,15 @@ std::vector<Eigen::VectorXd> approach_until_contact(const robots::RobotModel& mo
       next.head(n) += J.transpose() * JJt.ldlt().solve(error);
     }
     // `data` holds the kinematics at `next`: the Newton loop ends right after computing them.
-    if (error.norm() > kLineTolerance || !model.within_limits(next) || world.in_collision(data))
-      break;
+    if (error.norm() > kLineTolerance || !model.within_limits(next) || world.in_collision(data) ||
+        hand_near_object(model, world, data, o.clearance)) {
+      if (step < 0.3 * o.step) break;
+      step *= 0.5;
+      continue;
+    }
     poses.push_back(next);
     current = next;
+    done += step;
   }
   return poses;
 }

@@ -36,10 +36,16 @@ std::vector<Eigen::Vector3d> clasp_approaches(const servo::Points& loop, const C
 struct ApproachOptions {
   double step = 0.004;     ///< m per step along the approach direction
   double distance = 0.05;  ///< the longest advance (m); 0: none
+  /// The advance stops before any link of the hand comes nearer the object than this (m). The
+  /// seen surface lies within the depth noise of the true one, so a hand advanced to contact may
+  /// graze the real object; a clearance of twice the noise avoids that, at the cost of clasps
+  /// that need the hand deep (an 8 mm wire ring). 0: to contact.
+  double clearance = 0.0;
 };
 
 /// The open hand moved straight along its approach direction (v_fwd) by the arm alone, the tool's
-/// orientation kept, until the next step would touch anything (object, environment, itself),
+/// orientation kept, until the next step (tried whole, then at a half and a quarter) would touch
+/// anything (object, environment, itself), bring a hand link within `clearance` of the object,
 /// leave the joint limits or lose the line, or `distance` is covered: the approach to contact
 /// that precedes a grasp, so that the fingers close around the bar from deep rather than hook it
 /// with their tips. Returns the poses after q, each collision-free (empty: no step was free).

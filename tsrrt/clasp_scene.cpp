@@ -7,7 +7,9 @@
 #include <stdexcept>
 
 #include "core/input_error.hpp"
+#include "perception/cloud_filters.hpp"
 #include "perception/depth_surface.hpp"
+#include "robots/triangle_tree.hpp"
 #include "tsrrt/clasp_setup.hpp"
 #include "tsrrt/elapsed.hpp"
 
@@ -91,6 +93,25 @@ TriangleMesh object_collision_mesh(const perception::ObjectModel& object,
   }
   loop_tube(loop.points, kLoopTubeRadius, mesh);
   return mesh;
+}
+
+std::vector<Eigen::Vector3d> unmeshed_points(const std::vector<perception::DepthView>& views,
+                                             const Eigen::AlignedBox3d& region,
+                                             const TriangleMesh& collision_mesh,
+                                             const std::optional<Eigen::Vector4d>& support) {
+  const robots::TriangleTree mesh(collision_mesh.vertices, collision_mesh.triangles);
+  const perception::SupportHeight height(support);
+  const double margin = perception::DepthSurfaceOptions().plane_margin;
+  std::vector<Eigen::Vector3d> out, points;
+  for (const perception::DepthView& view : views) {
+    points.resize(static_cast<std::size_t>(view.image.valid_count()));
+    const std::size_t kept = perception::back_project(view, region, points.data()).kept;
+    for (std::size_t i = 0; i < kept; ++i)
+      if (height(points[i]) > margin &&
+          !mesh.touches_capsule(points[i], points[i], kMeasurementSlack))
+        out.push_back(points[i]);
+  }
+  return out;
 }
 
 void loop_tube(const servo::Points& loop, double radius, TriangleMesh& mesh) {

@@ -250,11 +250,20 @@ std::vector<Eigen::Vector3d> without_robot(const robots::RobotModel& model,
   return voxels;
 }
 
-// The voxels the robot must not enter (ClaspResult::unseen): the sensed map's, and near the loop
-// those of the same views cast on a finer grid in their place.
+// The voxels the robot must not enter (ClaspResult::unseen): the sensed map's unseen space and
+// the measurements the collision mesh misses, and near the loop those of the same views cast on
+// a finer grid in their place.
 void unseen_space(const robots::RobotModel& model, const perception::Loop& loop,
                   const perception::SensedSpaceOptions& o, ClaspResult& r) {
   const perception::SensedSpace& coarse = *r.object.sensed;
+  const std::vector<Eigen::Vector3d> unmeshed =
+      unmeshed_points(r.object.views, coarse.region(), r.collision_mesh, r.object.support_plane);
+  const auto blocked = [&](const perception::SensedSpace& space) {
+    std::vector<Eigen::Vector3d> out = space.blocked_voxels(r.object.support_plane);
+    const std::vector<Eigen::Vector3d> missed = space.voxels_holding(unmeshed);
+    out.insert(out.end(), missed.begin(), missed.end());
+    return out;
+  };
   if (o.loop_resolution > 0.0) {
     Eigen::AlignedBox3d around;
     for (const Eigen::Vector3d& p : loop.points) around.extend(p);
@@ -263,7 +272,7 @@ void unseen_space(const robots::RobotModel& model, const perception::Loop& loop,
     if (!fine.empty())
       r.sensed_near_loop = std::make_shared<const perception::SensedSpace>(std::move(fine));
   }
-  std::vector<Eigen::Vector3d> outside = coarse.blocked_voxels(r.object.support_plane);
+  std::vector<Eigen::Vector3d> outside = blocked(coarse);
   if (r.sensed_near_loop) {
     const Eigen::AlignedBox3d& box = r.sensed_near_loop->region();
     outside.erase(std::remove_if(outside.begin(), outside.end(),
@@ -274,9 +283,8 @@ void unseen_space(const robots::RobotModel& model, const perception::Loop& loop,
                       coarse.resolution()});
   if (r.sensed_near_loop) {
     const perception::SensedSpace& fine = *r.sensed_near_loop;
-    r.unseen.push_back({without_robot(model, r.start, fine.blocked_voxels(r.object.support_plane),
-                                      fine.resolution()),
-                        fine.resolution()});
+    r.unseen.push_back(
+        {without_robot(model, r.start, blocked(fine), fine.resolution()), fine.resolution()});
   }
 }
 
@@ -428,12 +436,13 @@ ClaspResult plan_clasp(const ClaspRequest& request) {
 
   // The scene: the robot, the object's collision mesh, the static environment and the space near
   // the object that no sensor saw (unknown is occupied there: sensed_space.hpp).
+  r.collision_mesh = object_collision_mesh(r.object, loop, perception.workspace, request.name);
   if (r.object.sensed) {
     unseen_space(model, loop, perception.sensed, r);
     say(sensed_summary(r));
   }
-  r.collision_mesh = object_collision_mesh(r.object, loop, perception.workspace, request.name);
   robots::CollisionWorld world = make_collision_world(model, r);
+  world.set_motion_travel(planning.collision_travel);
   start_touches(world);
 
   r.timings.scene = since(t);

@@ -329,6 +329,29 @@ TEST(Collision, MotionThroughAnObstacleIsRefused) {
   EXPECT_THROW(world.motion_free(q0, Eigen::VectorXd::Zero(3), 0.01), std::invalid_argument);
 }
 
+TEST(Collision, AWireBetweenTwoCheckedConfigurationsIsFoundByTheTravelBound) {
+  const RobotModel m = load_robot("kr5_icub");
+  CollisionWorld world(m);
+  // A 4 mm wire across the fingers' sweep at HOME (the post of the test above, thinned).
+  world.add_box(at(0.65, 0.0, 0.79), {0.004, 0.004, 0.3});
+  Eigen::VectorXd q0 = m.home, q1 = m.home;
+  q0[0] = 5 * kDeg;
+  q1[0] = -5 * kDeg;
+  ASSERT_TRUE(world.in_collision(m.home));
+  ASSERT_FALSE(world.in_collision(q0));
+  ASSERT_FALSE(world.in_collision(q1));
+  // 0.17 rad at 0.2 rad per check: only the two ends, 11 cm apart at the fingers.
+  EXPECT_TRUE(world.motion_free(q0, q1, 0.2));
+  world.set_motion_travel(0.005);
+  CollisionReport report;
+  EXPECT_FALSE(world.motion_free(q0, q1, 0.2, &report));
+  EXPECT_EQ(report.second, "box 0");
+  world.set_motion_travel(0.0);
+  EXPECT_TRUE(world.motion_free(q0, q1, 0.2));
+  EXPECT_THROW(world.set_motion_travel(-0.001), std::invalid_argument);
+  EXPECT_THROW(world.set_motion_travel(std::nan("")), std::invalid_argument);
+}
+
 TEST(Collision, BadInput) {
   const RobotModel m = load_robot("kr5_armar3");
   CollisionWorld world(m);

@@ -11,6 +11,7 @@
 #include "robots/collision_world.hpp"
 #include "robots/kinematics.hpp"
 #include "robots/robot_model.hpp"
+#include "test/support/box_mesh.hpp"
 
 namespace claspplan::test {
 namespace {
@@ -26,6 +27,23 @@ Pose pose_at(const robots::RobotModel& m, const Eigen::VectorXd& q) {
   return {robots::point_position(data, m.tcp), data.link_poses[m.tool_link].linear()};
 }
 
+// The open hand at q: the approach direction and how far along it the fingers reach.
+struct HandAhead {
+  Eigen::Vector3d direction;
+  double reach = 0.0;
+};
+HandAhead hand_ahead(const robots::RobotModel& m, const Eigen::VectorXd& q) {
+  robots::RobotData data(m);
+  robots::forward_kinematics(m, q, data);
+  HandAhead out{robots::vector_direction(data, m.v_fwd)};
+  const Eigen::Vector3d tcp = robots::point_position(data, m.tcp);
+  robots::FingerCurvesData curves;
+  robots::finger_curves(m, q, data, curves, false);
+  for (const auto& curve : curves.points)
+    for (const auto& p : curve) out.reach = std::max(out.reach, (p - tcp).dot(out.direction));
+  return out;
+}
+
 // A 30 x 30 cm plate, 4 mm thick, square to `direction`, its near face at `near`.
 Eigen::Isometry3d plate_pose(const Eigen::Vector3d& near, const Eigen::Vector3d& direction) {
   Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();
@@ -39,15 +57,8 @@ TEST(ApproachToContact, GoesStraightAlongTheApproachAndStopsWithinAStepOfContact
   const robots::RobotModel m = robots::load_robot("kr5_sdh");
   const Eigen::VectorXd q = m.home;
   const Pose start = pose_at(m, q);
-  robots::RobotData data(m);
-  robots::forward_kinematics(m, q, data);
-  const Eigen::Vector3d direction = robots::vector_direction(data, m.v_fwd);
-  // The hand's farthest finger-curve point along the approach: a plate 3 cm beyond it.
-  robots::FingerCurvesData curves;
-  robots::finger_curves(m, q, data, curves, false);
-  double reach = 0.0;
-  for (const auto& curve : curves.points)
-    for (const auto& p : curve) reach = std::max(reach, (p - start.tcp).dot(direction));
+  // A plate 3 cm beyond the hand's farthest finger-curve point along the approach.
+  const auto [direction, reach] = hand_ahead(m, q);
   const Eigen::Vector3d near = start.tcp + (reach + 0.03) * direction;
   const Eigen::Vector3d size(0.3, 0.3, 0.004);
 
@@ -76,6 +87,38 @@ TEST(ApproachToContact, GoesStraightAlongTheApproachAndStopsWithinAStepOfContact
   robots::CollisionWorld nearer(m);
   nearer.add_box(plate_pose(near - o.step * direction, direction), size);
   EXPECT_TRUE(nearer.in_collision(poses.back()));
+}
+
+TEST(ApproachToContact, KeepsTheClearanceFromTheObject) {
+  const robots::RobotModel m = robots::load_robot("kr5_sdh");
+  const Eigen::VectorXd q = m.home;
+  const Pose start = pose_at(m, q);
+  const auto [direction, reach] = hand_ahead(m, q);
+  robots::RobotData data(m);
+  const auto near_object = [&](robots::CollisionWorld& world, const Eigen::VectorXd& p, double c) {
+    robots::forward_kinematics(m, p, data);
+    for (std::size_t l = 0; l < m.links.size(); ++l)
+      if (m.links[l].hand && world.link_near_object(data, static_cast<int>(l), c)) return true;
+    return false;
+  };
+  // The plate as the object, at eight offsets within one step: with a 3 mm clearance the advance
+  // never ends nearer than that, and where the last free step ends nearer, it stops a step early.
+  tsrrt::ApproachOptions touching, clear;
+  touching.clearance = 0.0;
+  clear.clearance = 0.003;
+  int earlier = 0;
+  for (int k = 0; k < 8; ++k) {
+    const Eigen::Vector3d near = start.tcp + (reach + 0.02 + 0.0005 * k) * direction;
+    const TriangleMesh plate = box_mesh(plate_pose(near, direction), {0.3, 0.3, 0.004});
+    robots::CollisionWorld world(m);
+    world.set_object(plate.vertices, plate.triangles);
+    const auto deep = tsrrt::approach_until_contact(m, world, q, touching);
+    const auto kept = tsrrt::approach_until_contact(m, world, q, clear);
+    ASSERT_FALSE(kept.empty());
+    for (const auto& p : kept) EXPECT_FALSE(near_object(world, p, clear.clearance));
+    earlier += kept.size() < deep.size();
+  }
+  EXPECT_GT(earlier, 0);
 }
 
 TEST(ClaspApproaches, ComeFromOutsideTheHoleAndBothSidesOfTheLoop) {
