@@ -331,9 +331,13 @@ Sensed SensedSpace::cell(int i, int j, int k) const {
 
 Sensed SensedSpace::at(const Eigen::Vector3d& p) const {
   if (empty() || !box_.contains(p)) return Sensed::kUnknown;
-  const Eigen::Vector3i idx = ((p - box_.min()) / resolution_).array().floor().cast<int>();
-  const Eigen::Vector3i c = idx.cwiseMax(0).cwiseMin(dims_ - Eigen::Vector3i::Ones());
+  const Eigen::Vector3i c = voxel_of(p);
   return cell(c.x(), c.y(), c.z());
+}
+
+Eigen::Vector3i SensedSpace::voxel_of(const Eigen::Vector3d& p) const {
+  const Eigen::Vector3i idx = ((p - box_.min()) / resolution_).array().floor().cast<int>();
+  return idx.cwiseMax(0).cwiseMin(dims_ - Eigen::Vector3i::Ones());
 }
 
 bool SensedSpace::free_for_robot(const Eigen::Vector3d& p) const {
@@ -367,20 +371,16 @@ std::vector<Eigen::Vector3d> SensedSpace::blocked_voxels(
 
 std::vector<Eigen::Vector3d> SensedSpace::voxels_holding(
     const std::vector<Eigen::Vector3d>& points) const {
-  std::vector<long> index;
+  std::vector<std::array<int, 3>> voxels;  // (k, j, i): grid order when sorted
   for (const Eigen::Vector3d& p : points) {
     if (!box_.contains(p)) continue;
-    const Eigen::Vector3i v =
-        ((p - box_.min()) / resolution_).array().floor().cast<int>().min(dims_.array() - 1).max(0);
-    index.push_back((static_cast<long>(v.z()) * dims_.y() + v.y()) * dims_.x() + v.x());
+    const Eigen::Vector3i v = voxel_of(p);
+    voxels.push_back({v.z(), v.y(), v.x()});
   }
-  std::sort(index.begin(), index.end());
-  index.erase(std::unique(index.begin(), index.end()), index.end());
+  std::sort(voxels.begin(), voxels.end());
+  voxels.erase(std::unique(voxels.begin(), voxels.end()), voxels.end());
   std::vector<Eigen::Vector3d> out;
-  for (const long n : index)
-    out.push_back(centre(static_cast<int>(n % dims_.x()),
-                         static_cast<int>(n / dims_.x() % dims_.y()),
-                         static_cast<int>(n / (static_cast<long>(dims_.x()) * dims_.y()))));
+  for (const auto& [k, j, i] : voxels) out.push_back(centre(i, j, k));
   return out;
 }
 

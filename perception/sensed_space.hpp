@@ -120,6 +120,8 @@ class SensedSpace {
   // The whole grid, cast on first need (counts(), blocked_voxels()), once, on all cores; point
   // queries before that classify their voxel from the views directly, with the same rule.
   const std::vector<std::uint8_t>& cells() const;
+  /// The grid index of the voxel holding p (p inside the region; clamped at its far faces).
+  Eigen::Vector3i voxel_of(const Eigen::Vector3d& p) const;
 
   Eigen::AlignedBox3d box_;
   double resolution_ = 0.0;
