@@ -70,7 +70,8 @@ struct EnvItem {
   Geometry geometry;
   Eigen::Isometry3d pose;
   Box3 box;
-  bool unseen = false;  // the sensed map's unknown voxels (add_voxels)
+  bool unseen = false;    // the sensed map's unknown voxels (add_voxels)
+  bool measured = false;  // measured points the object's mesh leaves out (add_voxels)
 };
 
 Geometry make_geometry(const CollisionShape& s) {
@@ -274,8 +275,10 @@ struct CollisionWorld::Impl {
     const int link = shapes[s].link;
     if (static_link[link]) return false;
     const int e = shape_hits_environment(s);
-    // Unseen voxels lie behind the seen surface too: a shape through both met the object first.
-    const bool object = (e < 0 || environment[e].unseen) && shape_hits_object(s);
+    // Measured voxels are the object's material. Unseen voxels lie behind the seen surface too:
+    // a shape through both met the object first.
+    const bool object = (e >= 0 && environment[e].measured) ||
+                        ((e < 0 || environment[e].unseen) && shape_hits_object(s));
     if (object) {
       report(r, link, "object");
       return true;
@@ -372,7 +375,8 @@ int CollisionWorld::add_cylinder(const Eigen::Isometry3d& pose, double radius, d
   return index;
 }
 
-void CollisionWorld::add_voxels(const std::vector<Eigen::Vector3d>& centres, double edge) {
+void CollisionWorld::add_voxels(const std::vector<Eigen::Vector3d>& centres, double edge,
+                                VoxelKind kind) {
   if (!(edge > 0) || !std::isfinite(edge))
     throw std::invalid_argument("environment voxels: the edge must be finite and > 0");
   if (centres.empty()) return;
@@ -390,9 +394,10 @@ void CollisionWorld::add_voxels(const std::vector<Eigen::Vector3d>& centres, dou
   tree->prune();  // uniform blocks of 8 become one node: fewer nodes for FCL to visit
   const Eigen::Vector3d half = Eigen::Vector3d::Constant(0.5 * edge);
   impl_->environment.push_back(
-      {"unseen space",
+      {kind == VoxelKind::kUnseen ? "unseen space" : "measured points",
        std::make_shared<fcl::OcTreed>(std::shared_ptr<const octomap::OcTree>(std::move(tree))),
-       Eigen::Isometry3d::Identity(), Box3{bounds.min() - half, bounds.max() + half}, true});
+       Eigen::Isometry3d::Identity(), Box3{bounds.min() - half, bounds.max() + half},
+       kind == VoxelKind::kUnseen, kind == VoxelKind::kMeasured});
 }
 
 void CollisionWorld::clear_environment() {

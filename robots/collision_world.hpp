@@ -93,14 +93,21 @@ class CollisionWorld {
   int add_box(const Eigen::Isometry3d& pose, const Eigen::Vector3d& size);
   /// A cylinder along the pose's z axis, centred at pose. Returns its index among the cylinders.
   int add_cylinder(const Eigen::Isometry3d& pose, double radius, double length);
-  /// Cubes of edge `edge` centred at `centres` that the robot must not enter (the sensed
-  /// space's unseen voxels near the object: perception/sensed_space.hpp), held as an OctoMap
-  /// OcTree that FCL collides against; reported as "unseen space", unless the same shape touches
-  /// the object too (it went through the seen surface into the unknown behind it, so it met the
-  /// object first, and a collision query says "object"). Centres should lie on a grid
-  /// of spacing `edge` aligned with multiples of it (as SensedSpace's are). Throws
-  /// std::invalid_argument for a non-finite centre or edge <= 0. Nothing is added for no centres.
-  void add_voxels(const std::vector<Eigen::Vector3d>& centres, double edge);
+  /// Cubes of edge `edge` centred at `centres` that the robot must not enter, held as an OctoMap
+  /// OcTree that FCL collides against. `kind` says what they stand for:
+  /// - kUnseen: the sensed space's unseen voxels near the object (perception/sensed_space.hpp),
+  ///   reported as "unseen space", unless the same shape touches the object too (it went through
+  ///   the seen surface into the unknown behind it, so it met the object first, and a collision
+  ///   query says "object");
+  /// - kMeasured: voxels holding measured points that the object's mesh leaves out (a wire too
+  ///   thin for the depth surface), reported as "object": they are seen material. Add them before
+  ///   unseen voxels: a shape through both met the material first.
+  /// Centres should lie on a grid of spacing `edge` aligned with multiples of it (as
+  /// SensedSpace's are). Throws std::invalid_argument for a non-finite centre or edge <= 0.
+  /// Nothing is added for no centres.
+  enum class VoxelKind { kUnseen, kMeasured };
+  void add_voxels(const std::vector<Eigen::Vector3d>& centres, double edge,
+                  VoxelKind kind = VoxelKind::kUnseen);
   void clear_environment();
 
   // --- Options

@@ -250,20 +250,14 @@ std::vector<Eigen::Vector3d> without_robot(const robots::RobotModel& model,
   return voxels;
 }
 
-// The voxels the robot must not enter (ClaspResult::unseen): the sensed map's unseen space and
-// the measurements the collision mesh misses, and near the loop those of the same views cast on
-// a finer grid in their place.
-void unseen_space(const robots::RobotModel& model, const perception::Loop& loop,
-                  const perception::SensedSpaceOptions& o, ClaspResult& r) {
+// The voxels the robot must not enter: the sensed map's unseen space (ClaspResult::unseen) and
+// the measurements the collision mesh misses (ClaspResult::measured), and near the loop those of
+// the same views cast on a finer grid in their place.
+void blocked_space(const robots::RobotModel& model, const perception::Loop& loop,
+                   const perception::SensedSpaceOptions& o, ClaspResult& r) {
   const perception::SensedSpace& coarse = *r.object.sensed;
   const std::vector<Eigen::Vector3d> unmeshed =
       unmeshed_points(r.object.views, coarse.region(), r.collision_mesh, r.object.support_plane);
-  const auto blocked = [&](const perception::SensedSpace& space) {
-    std::vector<Eigen::Vector3d> out = space.blocked_voxels(r.object.support_plane);
-    const std::vector<Eigen::Vector3d> missed = space.voxels_holding(unmeshed);
-    out.insert(out.end(), missed.begin(), missed.end());
-    return out;
-  };
   if (o.loop_resolution > 0.0) {
     Eigen::AlignedBox3d around;
     for (const Eigen::Vector3d& p : loop.points) around.extend(p);
@@ -272,20 +266,27 @@ void unseen_space(const robots::RobotModel& model, const perception::Loop& loop,
     if (!fine.empty())
       r.sensed_near_loop = std::make_shared<const perception::SensedSpace>(std::move(fine));
   }
-  std::vector<Eigen::Vector3d> outside = blocked(coarse);
-  if (r.sensed_near_loop) {
-    const Eigen::AlignedBox3d& box = r.sensed_near_loop->region();
-    outside.erase(std::remove_if(outside.begin(), outside.end(),
-                                 [&](const Eigen::Vector3d& c) { return box.contains(c); }),
-                  outside.end());
-  }
-  r.unseen.push_back({without_robot(model, r.start, std::move(outside), coarse.resolution()),
-                      coarse.resolution()});
-  if (r.sensed_near_loop) {
+  // Each kind on the coarse grid outside the fine one's region, then on the fine grid.
+  const auto add = [&](std::vector<ClaspResult::Voxels>& out, auto voxels_of) {
+    std::vector<Eigen::Vector3d> outside = voxels_of(coarse);
+    if (r.sensed_near_loop) {
+      const Eigen::AlignedBox3d& box = r.sensed_near_loop->region();
+      outside.erase(std::remove_if(outside.begin(), outside.end(),
+                                   [&](const Eigen::Vector3d& c) { return box.contains(c); }),
+                    outside.end());
+    }
+    out.push_back({without_robot(model, r.start, std::move(outside), coarse.resolution()),
+                   coarse.resolution()});
+    if (!r.sensed_near_loop) return;
     const perception::SensedSpace& fine = *r.sensed_near_loop;
-    r.unseen.push_back(
-        {without_robot(model, r.start, blocked(fine), fine.resolution()), fine.resolution()});
-  }
+    out.push_back(
+        {without_robot(model, r.start, voxels_of(fine), fine.resolution()), fine.resolution()});
+  };
+  add(r.unseen, [&](const perception::SensedSpace& space) {
+    return space.blocked_voxels(r.object.support_plane);
+  });
+  add(r.measured,
+      [&](const perception::SensedSpace& space) { return space.voxels_holding(unmeshed); });
 }
 
 // One line of what the sensors saw and what the robot may not enter.
@@ -293,7 +294,8 @@ std::string sensed_summary(const ClaspResult& r) {
   const auto n = r.object.sensed->counts();
   const double all = static_cast<double>(n[0] + n[1] + n[2]) / 100.0;
   std::size_t blocked = 0;
-  for (const auto& v : r.unseen) blocked += v.centres.size();
+  for (const auto* kind : {&r.measured, &r.unseen})
+    for (const auto& v : *kind) blocked += v.centres.size();
   char line[200];
   std::snprintf(line, sizeof line,
                 "sensed space near the object: %.0f%% free, %.0f%% occupied, %.0f%% unknown "
@@ -438,7 +440,7 @@ ClaspResult plan_clasp(const ClaspRequest& request) {
   // the object that no sensor saw (unknown is occupied there: sensed_space.hpp).
   r.collision_mesh = object_collision_mesh(r.object, loop, perception.workspace, request.name);
   if (r.object.sensed) {
-    unseen_space(model, loop, perception.sensed, r);
+    blocked_space(model, loop, perception.sensed, r);
     say(sensed_summary(r));
   }
   robots::CollisionWorld world = make_collision_world(model, r);
@@ -486,8 +488,10 @@ robots::CollisionWorld make_collision_world(const robots::RobotModel& robot,
   robots::CollisionWorld world(robot);
   world.set_object(result.collision_mesh.vertices, result.collision_mesh.triangles);
   for (const auto& b : result.environment) world.add_box(b.pose, b.size);
-  for (const auto& v : result.unseen)
-    if (!v.centres.empty()) world.add_voxels(v.centres, v.edge);
+  // The measured material first: a shape through it and the unknown behind met it first.
+  for (const auto& v : result.measured)
+    world.add_voxels(v.centres, v.edge, robots::CollisionWorld::VoxelKind::kMeasured);
+  for (const auto& v : result.unseen) world.add_voxels(v.centres, v.edge);
   return world;
 }
 

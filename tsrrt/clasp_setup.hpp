@@ -187,6 +187,10 @@ struct ClaspResult {
     double edge = 0.0;
   };
   std::vector<Voxels> unseen;
+  /// Voxels holding measured points that collision_mesh leaves out (unmeshed_points(): a rod
+  /// too thin for the depth surface), laid out as `unseen`: the robot must not enter them either,
+  /// and meeting them is meeting the object, not unseen space.
+  std::vector<Voxels> measured;
 
   /// kNoClasp after a search whose attempts most often ran into unseen space, or a controller
   /// run that unseen space stopped: a camera that would see most of the unknown space where the

@@ -142,6 +142,15 @@ TEST(Collision, Boxes) {
   EXPECT_LT(world.environment_hit().shape, 0) << "no hit: nothing touched";
   const Eigen::Vector3d on_voxels = world.contact_point(hit);
   EXPECT_LE(box_1.exteriorDistance(on_voxels), 0.01) << on_voxels.transpose();
+  // The same voxels holding measured points the object's mesh leaves out are the object's
+  // material, not unseen space; a shape through both met the material first.
+  world.clear_environment();
+  world.add_voxels(voxels, 0.005, CollisionWorld::VoxelKind::kMeasured);
+  EXPECT_TRUE(world.in_collision(m.home, &report));
+  EXPECT_EQ(report.second, "object");
+  world.add_voxels(voxels, 0.005);
+  EXPECT_TRUE(world.in_collision(m.home, &report));
+  EXPECT_EQ(report.second, "object");
   world.clear_environment();
   EXPECT_FALSE(world.in_collision(m.home));
   // A table the base stands in: the base never moves, so it is not checked.
