@@ -121,7 +121,8 @@ void draw_sensed_space_png(const SensedSpace& space, const Eigen::Vector3d& cent
                            const SensedSpace* finer) {
   if (space.empty()) throw std::invalid_argument("sensed space: nothing to draw (no sensor)");
   if (finer && finer->empty()) finer = nullptr;
-  constexpr int kPanel = 320, kGap = 10, kTop = 24;
+  constexpr int kPanel = SensedPictureLayout::panel, kGap = SensedPictureLayout::gap,
+                kTop = SensedPictureLayout::title;
   const int bottom = view ? 78 : 56;
   cv::Mat img(kTop + kPanel + bottom, 3 * kPanel + 4 * kGap, CV_8UC3, cv::Scalar(255, 255, 255));
   const Eigen::AlignedBox3d& box = space.region();

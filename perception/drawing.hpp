@@ -15,6 +15,14 @@ namespace claspplan::perception {
 void draw_object_model_png(const ObjectModel& model, const std::string& path, int width = 900,
                            int height = 700);
 
+/// The layout of draw_sensed_space_png()'s picture, in pixels: a title row, three square panels
+/// side by side with gaps, then the caption's lines.
+struct SensedPictureLayout {
+  static constexpr int title = 24;
+  static constexpr int panel = 320;
+  static constexpr int gap = 10;
+};
+
 /// Draws the sensed map (sensed_space.hpp) in three slices through `centre` (world axes: the
 /// x-z plane, the y-z plane and the x-y plane): free voxels white, occupied dark blue, unknown
 /// orange, outside the region grey; `loop` (optional) in red, projected onto each slice; `view`

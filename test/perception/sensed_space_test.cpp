@@ -222,7 +222,8 @@ TEST(SensedSpace, TheSensedPictureShowsTheFinerVoxels) {
   ASSERT_EQ(with.size(), without.size());
   const cv::Vec3b free(245, 245, 245), outline(130, 130, 130);
   int gained = 0, lost = 0;
-  for (int y = 0; y < 24 + 320; ++y)  // the panels (title row and 320 pixels), not the caption
+  // The title row and the panels, not the caption (which names the finer voxels).
+  for (int y = 0; y < SensedPictureLayout::title + SensedPictureLayout::panel; ++y)
     for (int x = 0; x < with.cols; ++x) {
       const cv::Vec3b a = with.at<cv::Vec3b>(y, x), b = without.at<cv::Vec3b>(y, x);
       gained += a == free && b != free;
