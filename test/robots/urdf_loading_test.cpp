@@ -18,6 +18,7 @@
 #include "robots/hand_size.hpp"
 #include "robots/kinematics.hpp"
 #include "robots/robot_model.hpp"
+#include "test/support/box_mesh.hpp"
 
 namespace claspplan::robots {
 namespace {
@@ -35,16 +36,7 @@ std::string replaced(std::string text, const std::string& from, const std::strin
 
 // A unit cube centred at the origin.
 TriangleMesh unit_cube() {
-  TriangleMesh m;
-  for (int i = 0; i < 8; ++i)
-    m.vertices.emplace_back((i & 1) - 0.5, ((i >> 1) & 1) - 0.5, ((i >> 2) & 1) - 0.5);
-  const int faces[6][4] = {{0, 2, 3, 1}, {4, 5, 7, 6}, {0, 1, 5, 4},
-                           {2, 6, 7, 3}, {0, 4, 6, 2}, {1, 3, 7, 5}};
-  for (const auto& f : faces) {
-    m.triangles.emplace_back(f[0], f[1], f[2]);
-    m.triangles.emplace_back(f[0], f[2], f[3]);
-  }
-  return m;
+  return test::box_mesh(Eigen::Isometry3d::Identity(), Eigen::Vector3d::Ones());
 }
 
 // The cube stretched to twice its height, as COLLADA in millimetres (<unit meter="0.001">, Z_UP,

@@ -14,8 +14,8 @@ inline TriangleMesh box_mesh(const Eigen::Isometry3d& pose, const Eigen::Vector3
     mesh.vertices.push_back(pose * (0.5 * Eigen::Vector3d((c & 1) ? size.x() : -size.x(),
                                                           (c & 2) ? size.y() : -size.y(),
                                                           (c & 4) ? size.z() : -size.z())));
-  const int faces[6][4] = {{0, 2, 6, 4}, {1, 5, 7, 3}, {0, 4, 5, 1},
-                           {2, 3, 7, 6}, {0, 1, 3, 2}, {4, 6, 7, 5}};
+  const int faces[6][4] = {{0, 2, 3, 1}, {4, 5, 7, 6}, {0, 1, 5, 4},
+                           {2, 6, 7, 3}, {0, 4, 6, 2}, {1, 3, 7, 5}};
   for (const auto& f : faces) {
     mesh.triangles.emplace_back(f[0], f[1], f[2]);
     mesh.triangles.emplace_back(f[0], f[2], f[3]);
