@@ -68,6 +68,7 @@ json outcomes_json(const tsrrt::ConnectOutcomes& o) {
           {"time_limit", o.time_limit},
           {"detours", o.detours},
           {"extend_collisions", o.extend_collisions},
+          {"restarts", o.restarts},
           {"sampled", o.sampled},
           {"sampled_clasps", o.sampled_clasps},
           {"joined", o.joined}};

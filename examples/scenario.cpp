@@ -351,7 +351,7 @@ void read_planner(const Reader& pl, const std::string& path, Scenario& s) {
            "collision_resolution", "collision_travel",  "approach_clearance", "prune_attempts",
            "closing_step",         "closing_clearance", "verify_sequences",   "verify_motions",
            "verify_in_search",     "backoff_steps",     "detour_steps",       "closable_linking",
-           "sample_probability",   "sample_after",      "joint_step"});
+           "sample_probability",   "sample_after",      "joint_step",         "restart_cycles"});
   auto& o = s.planning;
   auto& tp = o.planner;
   tp.random_probability = pl.number("random_probability", tp.random_probability, 0.0, 1.0);
@@ -366,6 +366,7 @@ void read_planner(const Reader& pl, const std::string& path, Scenario& s) {
   tp.sample_probability = pl.number("sample_probability", tp.sample_probability, 0.0, 1.0);
   tp.sample_after = pl.integer("sample_after", tp.sample_after, 0, 1000000);
   tp.joint_step = pl.number("joint_step", tp.joint_step, 1e-4, 10.0);
+  tp.restart_cycles = pl.integer("restart_cycles", tp.restart_cycles, 0, 100000000);
   tp.linking_scale = pl.number("linking_scale", tp.linking_scale, 0.0, 100.0);
   if (pl.has("sample_min") != pl.has("sample_max")) {
     pl.fail("sample_min", "give both sample_min and sample_max, or neither");

@@ -575,6 +575,10 @@ void CollisionWorld::set_motion_travel(double metres) {
   impl_->travel = metres;
 }
 
+double CollisionWorld::motion_travel() const {
+  return impl_->travel;
+}
+
 bool CollisionWorld::motion_free(const Eigen::VectorXd& q0, const Eigen::VectorXd& q1,
                                  double resolution, CollisionReport* report) {
   Impl& m = *impl_;

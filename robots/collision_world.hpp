@@ -125,6 +125,7 @@ class CollisionWorld {
   /// 0.02 rad a point 0.6 m out moves 12 mm, and a finger can step over a 4 mm wire. 0: off (the
   /// default). Throws std::invalid_argument for a negative or non-finite value.
   void set_motion_travel(double metres);
+  double motion_travel() const;
   /// The link pairs (i < j) that self-collision checks, with the options in force.
   std::vector<std::pair<int, int>> self_collision_pairs() const;
 

@@ -33,6 +33,10 @@ class ClaspProblem final : public PlanningProblem {
   /// move.
   bool control_limited() const override { return limited_; }
   MotionCheck check_motion(const Eigen::VectorXd& q0, const Eigen::VectorXd& q1) override;
+  /// Also sampled so that no robot point travels more than kShortcutTravel between checks: at
+  /// `resolution` alone a shortcut's fingertips, 1 m from the base, move 2 cm between checks
+  /// across a shelf's edge.
+  bool shortcut_free(const Eigen::VectorXd& q0, const Eigen::VectorXd& q1) override;
   bool reached(const TaskPoint& x, const TaskPoint& goal) const override;
   bool accept(const Eigen::VectorXd& q) override { return !acceptance_ || acceptance_(q); }
   /// Arm joints uniform within their limits, the hand open (its pre-shape), collision-free: up
@@ -50,7 +54,8 @@ class ClaspProblem final : public PlanningProblem {
   std::vector<Eigen::Vector3d> unseen_contacts() const;
 
   static constexpr std::size_t kMaxContacts = 20000;
-  static constexpr double kLimitMargin = 0.05;  ///< rad (m): one controller step at most
+  static constexpr double kLimitMargin = 0.05;      ///< rad (m): one controller step at most
+  static constexpr double kShortcutTravel = 0.005;  ///< m
 
  private:
   servo::ClaspController& controller_;

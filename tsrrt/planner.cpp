@@ -15,6 +15,16 @@ namespace claspplan::tsrrt {
 
 namespace {
 
+// The i-th term (from 1) of Luby, Sinclair and Zuckerman's sequence 1, 1, 2, 1, 1, 2, 4, 1, ...:
+// restart intervals in these proportions lose at most a logarithmic factor against the best
+// interval for a search whose run time is unknown (Inf. Process. Lett. 47, 1993).
+int luby(int i) {
+  for (int k = 1;; ++k) {
+    if (i == (1 << k) - 1) return 1 << (k - 1);
+    if (i < (1 << k) - 1) return luby(i - (1 << (k - 1)) + 1);
+  }
+}
+
 // How one TS-CONNECT-GOAL attempt ended.
 enum class Ending {
   kAccepted,
@@ -104,6 +114,8 @@ std::string describe(const ConnectOutcomes& o) {
     text += "; " + std::to_string(o.rejected) + " reached the goal but were rejected";
   }
   text += "; " + std::to_string(o.detours) + (o.detours == 1 ? " detour" : " detours");
+  if (o.restarts > 0)
+    text += "; " + std::to_string(o.restarts) + (o.restarts == 1 ? " restart" : " restarts");
   if (o.sampled > 0) {
     text += "; " + std::to_string(o.sampled) + " approaches from sampled configurations (" +
             std::to_string(o.sampled_clasps) + " reached a clasp)";
@@ -153,10 +165,17 @@ class TsRrt {
         start_(Clock::now()) {}
 
   PlanResult run(const Eigen::VectorXd& q_init) {
-    tree_.add(q_init, problem_.project(q_init), -1);
-    for (int i = 0; i < p_.pre_expansions && !out_of_time(); ++i) extend(random_sample());
+    grow(q_init);
+    int restart_at = p_.restart_cycles;  // the current tree's last cycle
     for (result_.cycles = 1; result_.cycles <= p_.max_cycles; ++result_.cycles) {
       if (out_of_time()) break;
+      if (p_.restart_cycles > 0 && result_.cycles > restart_at) {
+        restart_at += p_.restart_cycles * luby(result_.outcomes.restarts + 2);
+        restarted_at_ = result_.cycles - 1;
+        ++result_.outcomes.restarts;
+        grow(q_init);
+        if (out_of_time()) break;
+      }
       if (!branches_.empty()) {
         join();
         if (result_.success) break;
@@ -166,7 +185,7 @@ class TsRrt {
         continue;
       }
       // (No draw in the first cycles: a search that ends there is the paper's, unchanged.)
-      if (result_.cycles > p_.sample_after && p_.sample_probability > 0.0 &&
+      if (result_.cycles - restarted_at_ > p_.sample_after && p_.sample_probability > 0.0 &&
           uniform01(rng_()) < p_.sample_probability) {
         // As many approaches as a cycle has connect attempts.
         for (std::size_t g = 0; g < goals_.size() && !result_.success && !out_of_time(); ++g) {
@@ -199,6 +218,14 @@ class TsRrt {
   }
 
  private:
+  // A new tree: the root q_init and the pre-expansion (Alg. 1, lines 1-4).
+  void grow(const Eigen::VectorXd& q_init) {
+    tree_.clear();
+    for (auto& nodes : tried_) nodes.clear();
+    tree_.add(q_init, problem_.project(q_init), -1);
+    for (int i = 0; i < p_.pre_expansions && !out_of_time(); ++i) extend(random_sample());
+  }
+
   bool out_of_time() {
     if (p_.time_limit > 0.0 && since(start_) >= p_.time_limit) {
       result_.timed_out = true;
@@ -437,6 +464,7 @@ class TsRrt {
   };
   std::vector<BranchNode> branches_;
   bool join_from_tree_ = false;
+  int restarted_at_ = 0;  // the cycle after which the current tree was grown
   Clock::time_point start_;
   PlanResult result_;
 };
@@ -457,7 +485,7 @@ std::vector<Eigen::VectorXd> prune_path(PlanningProblem& problem, std::vector<Ei
     std::size_t j = static_cast<std::size_t>(uniform01(rng()) * n);
     if (i > j) std::swap(i, j);
     if (j < i + 2) continue;
-    if (problem.motion_free(path[i], path[j])) {
+    if (problem.shortcut_free(path[i], path[j])) {
       path.erase(path.begin() + static_cast<std::ptrdiff_t>(i) + 1,
                  path.begin() + static_cast<std::ptrdiff_t>(j));
     }

@@ -47,6 +47,13 @@ struct PlannerParameters {
   double sample_probability = 0.5;
   int sample_after = 10;
   double joint_step = 0.1;  ///< rad: the longest joint move of one joint-space step
+  /// Restarts, an extension of Alg. 1: a search without a clasp drops its tree and grows a new
+  /// one from q_init (pre-expansion included), after restart_cycles times 1, 1, 2, 1, 1, 2, 4, ...
+  /// cycles (Luby's sequence). A tree that failed near the loop offers its nodes there, pressed
+  /// against the object, to every later attempt, while a clasp either comes in a tree's first
+  /// cycles or late; a new tree starts from fresh random extensions. The accepted clasps of goal
+  /// sampling are kept. 0: never (the paper's algorithm).
+  int restart_cycles = 30;
   /// RANDOM-TS-SAMPLE: positions uniform in this box (world frame), linking uniform in [0, 1].
   Eigen::Vector3d sample_min = Eigen::Vector3d::Constant(-1.0);
   Eigen::Vector3d sample_max = Eigen::Vector3d::Constant(1.0);
@@ -70,6 +77,7 @@ struct ConnectOutcomes {
   int time_limit = 0;           ///< cut short by the time limit
   int detours = 0;              ///< detours toward an approach point after a failed attempt
   int extend_collisions = 0;    ///< TS-EXTEND steps (random or detour) that ended in a collision
+  int restarts = 0;             ///< new trees grown (PlannerParameters::restart_cycles)
   /// Goal sampling (not among the attempts above): approaches from sampled configurations, those
   /// that reached an accepted clasp, and whether one of those was joined to the tree.
   int sampled = 0;
@@ -100,7 +108,7 @@ struct PlanResult {
   std::vector<Eigen::VectorXd> path;  ///< start to goal configuration, when successful
   int goal_index = -1;                ///< which goal was reached
   int cycles = 0;                     ///< cycles of Alg. 1's loop after the pre-expansion
-  int nodes = 0;
+  int nodes = 0;                      ///< of the last tree
   int control_steps = 0;
   int rejected_goals = 0;  ///< nodes in goal tolerance that PlanningProblem::accept() refused
   ConnectOutcomes outcomes;
@@ -117,7 +125,7 @@ PlanResult build_ts_rrt(PlanningProblem& problem, const Eigen::VectorXd& q_init,
                         const std::vector<TaskPoint>& goals, const PlannerParameters& p);
 
 /// Randomized path pruning: `attempts` times, pick two waypoints at random and join them directly
-/// when that motion is collision-free. The first and last waypoints stay.
+/// when PlanningProblem::shortcut_free() allows that motion. The first and last waypoints stay.
 std::vector<Eigen::VectorXd> prune_path(PlanningProblem& problem, std::vector<Eigen::VectorXd> path,
                                         int attempts, std::uint64_t seed);
 

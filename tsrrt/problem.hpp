@@ -53,6 +53,12 @@ class PlanningProblem {
     return check_motion(q0, q1) == MotionCheck::kFree;
   }
 
+  /// Whether path pruning may join q0 and q1 directly: by default motion_free(). A shortcut
+  /// replaces many short steps by one long motion, which a problem may check more finely.
+  virtual bool shortcut_free(const Eigen::VectorXd& q0, const Eigen::VectorXd& q1) {
+    return motion_free(q0, q1);
+  }
+
   /// TS-TOLERANCE: x satisfies the goal x_goal (virtual linking, optionally also position).
   virtual bool reached(const TaskPoint& x, const TaskPoint& goal) const = 0;
 

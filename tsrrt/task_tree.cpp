@@ -41,6 +41,12 @@ TaskTree::TaskTree(double linking_scale)
 
 TaskTree::~TaskTree() = default;
 
+void TaskTree::clear() {
+  nodes_.clear();
+  keys_.clear();
+  index_ = std::make_unique<Index>(&keys_);
+}
+
 int TaskTree::add(const Eigen::VectorXd& q, const TaskPoint& x, int parent) {
   nodes_.push_back({q, x, parent});
   keys_.emplace_back(x.position.x(), x.position.y(), x.position.z(), linking_scale_ * x.linking);

@@ -27,6 +27,9 @@ class TaskTree {
   TaskTree(const TaskTree&) = delete;
   TaskTree& operator=(const TaskTree&) = delete;
 
+  /// Removes every node (a restarted search grows a new tree).
+  void clear();
+
   /// Appends a node and returns its index.
   int add(const Eigen::VectorXd& q, const TaskPoint& x, int parent);
 

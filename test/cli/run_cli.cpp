@@ -215,8 +215,8 @@ void expect_connect_outcomes(const json& o) {
     ASSERT_TRUE(o.contains(key)) << key;
     endings += o[key].get<int>();
   }
-  for (const char* key :
-       {"attempts", "detours", "extend_collisions", "sampled", "sampled_clasps", "joined"}) {
+  for (const char* key : {"attempts", "detours", "extend_collisions", "restarts", "sampled",
+                          "sampled_clasps", "joined"}) {
     ASSERT_TRUE(o.contains(key)) << key;
   }
   EXPECT_EQ(endings, o["attempts"].get<int>());
@@ -461,7 +461,7 @@ TEST(Planner, ASearchIntoUnseenSpaceNamesACameraThatWouldSeeIt) {
 TEST(Planner, ClaspsWhoseFingersStopOnUnseenSpaceNameACamera) {
   TempDir dir;
   const CliResult r =
-      run_cli({"run", scenario("conditions/spice_rack_yaw180_icub"), "--seed", "3", "--max-cycles",
+      run_cli({"run", scenario("conditions/spice_rack_yaw180_icub"), "--seed", "2", "--max-cycles",
                "60", "--no-pictures", "--out", dir.file("out"), "--json"});
   ASSERT_EQ(r.exit_code, 1) << r.err;
   const std::string reason = r.json()["reason"].get<std::string>();
@@ -482,20 +482,18 @@ TEST(Planner, ClaspsWhoseFingersStopOnUnseenSpaceNameACamera) {
   EXPECT_LT(nearest, 0.05) << "it looks at the ring";
   EXPECT_GT(view["visible_voxels"].get<double>(), 0.0);
 
-  // With --next-views that camera is rendered and added first, and the same search clasps the
-  // ring (after a second camera, named by the search with the first).
+  // With --next-views that camera is rendered and added, and the same search clasps the ring.
   const CliResult again =
-      run_cli({"run", scenario("conditions/spice_rack_yaw180_icub"), "--seed", "3", "--max-cycles",
+      run_cli({"run", scenario("conditions/spice_rack_yaw180_icub"), "--seed", "2", "--max-cycles",
                "60", "--next-views", "2", "--no-pictures", "--out", dir.file("again"), "--json"});
   ASSERT_EQ(again.exit_code, 0) << again.out << again.err;
   EXPECT_TRUE(again.json()["verified"].get<bool>());
   const json added = read_json(dir.file("again/result.json")).at("added_views");
-  ASSERT_EQ(added.size(), 2u) << added;
+  ASSERT_EQ(added.size(), 1u) << added;
   EXPECT_EQ(added[0]["position"], view["position"]);
   EXPECT_EQ(added[0]["target"], view["target"]);
-  EXPECT_NE(added[1]["position"], view["position"]);
   EXPECT_EQ(again.json()["added_views"], added);
-  EXPECT_TRUE(std::filesystem::exists(dir.file("again/depth_4.yaml"))) << "the fifth view";
+  EXPECT_TRUE(std::filesystem::exists(dir.file("again/depth_3.yaml"))) << "the fourth view";
 }
 
 // The clasp controller alone stops where a finger first meets space no camera saw (at the jug's

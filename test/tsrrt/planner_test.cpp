@@ -87,7 +87,8 @@ tsrrt::PlannerParameters toy_parameters() {
   p.pre_expansions = 20;
   p.max_cycles = 2000;
   p.random_probability = 0.5;
-  p.time_limit = 0.0;  // bounded by cycles: no test depends on the clock
+  p.time_limit = 0.0;    // bounded by cycles: no test depends on the clock
+  p.restart_cycles = 0;  // one tree, as in Alg. 1
   p.seed = 11;
   return p;
 }
@@ -143,12 +144,17 @@ TEST(TsRrt, SameSeedSamePlan) {
   EXPECT_NE(rc.nodes, ra.nodes);
 }
 
-TEST(TsRrt, UnreachableGoalEndsWithAReason) {
+// 60 cycles toward a goal inside the wall.
+tsrrt::PlanResult search_into_the_wall(int restart_cycles) {
   ToyProblem toy;
-  const std::vector<TaskPoint> inside_wall = {{Eigen::Vector3d(0.5, 0.0, 0.0), 1.0}};
   auto p = toy_parameters();
   p.max_cycles = 60;
-  const auto r = tsrrt::build_ts_rrt(toy, kStart, inside_wall, p);
+  p.restart_cycles = restart_cycles;
+  return tsrrt::build_ts_rrt(toy, kStart, {{Eigen::Vector3d(0.5, 0.0, 0.0), 1.0}}, p);
+}
+
+TEST(TsRrt, UnreachableGoalEndsWithAReason) {
+  const auto r = search_into_the_wall(0);
   EXPECT_FALSE(r.success);
   EXPECT_EQ(r.cycles, 60);
   EXPECT_NE(r.reason.find("60 cycles"), std::string::npos) << r.reason;
@@ -331,6 +337,50 @@ TEST(TsRrt, GoalSamplingReachesAClaspTheTreeCannotAndJoinsIt) {
   const auto r2 = tsrrt::build_ts_rrt(again, kStart, goal, p);
   ASSERT_EQ(r2.path.size(), r.path.size());
   for (std::size_t i = 0; i < r.path.size(); ++i) EXPECT_EQ(r2.path[i], r.path[i]);
+}
+
+TEST(TsRrt, RestartsGrowNewTreesAfterLubysIntervals) {
+  const auto once = search_into_the_wall(0);
+  EXPECT_EQ(once.outcomes.restarts, 0);
+  const auto r = search_into_the_wall(10);  // trees of 10, 10, 20, 10 and 10 cycles
+  EXPECT_FALSE(r.success);
+  EXPECT_EQ(r.cycles, 60);
+  EXPECT_EQ(r.outcomes.restarts, 4);
+  EXPECT_NE(r.reason.find("; 4 restarts"), std::string::npos) << r.reason;
+  // The last tree alone: rooted at the start, grown in 10 cycles against the single tree's 60.
+  EXPECT_LT(r.nodes, once.nodes);
+  ASSERT_EQ(static_cast<int>(r.tree_points.size()), r.nodes);
+  EXPECT_EQ(r.tree_parents[0], -1);
+  EXPECT_EQ(r.tree_points[0].position, Eigen::Vector3d::Zero());  // kStart's
+  for (int i = 1; i < r.nodes; ++i) EXPECT_LT(r.tree_parents[i], i);
+}
+
+TEST(TsRrt, ARestartFindsWhatTheFirstTreeMissed) {
+  // The pocket's goal, no goal sampling and no random extensions after the pre-expansion: a tree
+  // whose pre-expansion did not get round the pocket keeps running into its front wall; a new
+  // tree's pre-expansion may.
+  const std::vector<TaskPoint> goal = {{Eigen::Vector3d(1.0, 0.0, 0.0), 1.0}};
+  auto p = toy_parameters();
+  p.random_probability = 0.0;
+  p.sample_probability = 0.0;
+  p.max_cycles = 300;
+  p.pre_expansions = 50;
+  p.seed = 1;  // a seed whose first tree does not get round
+  PocketProblem one;
+  const auto without = tsrrt::build_ts_rrt(one, kStart, goal, p);
+  EXPECT_FALSE(without.success);
+  EXPECT_EQ(without.outcomes.contact_object, without.outcomes.attempts);
+  p.restart_cycles = 10;
+  PocketProblem toy;
+  const auto r = tsrrt::build_ts_rrt(toy, kStart, goal, p);
+  ASSERT_TRUE(r.success) << r.reason;
+  EXPECT_GE(r.outcomes.restarts, 1);
+  EXPECT_EQ(r.path.front(), kStart);
+  bool behind = false;
+  for (const auto& q : r.path) behind |= q[0] > 1.2;
+  EXPECT_TRUE(behind);
+  for (std::size_t i = 0; i + 1 < r.path.size(); ++i)
+    EXPECT_TRUE(toy.motion_free(r.path[i], r.path[i + 1])) << "segment " << i;
 }
 
 TEST(TsRrt, ARejectedGoalNodeLeadsToAnotherApproach) {
