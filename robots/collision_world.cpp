@@ -151,7 +151,7 @@ struct CollisionWorld::Impl {
   // stays placed (tf, box) until the next check.
   std::pair<int, int> env_hit{-1, -1};
 
-  Eigen::VectorXd reach;  // motion_reach(model), once set_motion_travel() asks for it
+  Eigen::VectorXd reach;  // motion_reach(model), once a motion check bounds travel
   double travel = 0.0;
   bool self_enabled = true;
   bool hand_self_enabled = true;
@@ -571,7 +571,6 @@ Eigen::Vector3d CollisionWorld::contact_point(const EnvironmentHit& hit) const {
 void CollisionWorld::set_motion_travel(double metres) {
   if (!(metres >= 0) || !std::isfinite(metres))
     throw std::invalid_argument("set_motion_travel: the distance must be finite and >= 0");
-  if (metres > 0 && impl_->reach.size() == 0) impl_->reach = motion_reach(impl_->model);
   impl_->travel = metres;
 }
 
@@ -580,15 +579,16 @@ double CollisionWorld::motion_travel() const {
 }
 
 bool CollisionWorld::motion_free(const Eigen::VectorXd& q0, const Eigen::VectorXd& q1,
-                                 double resolution, CollisionReport* report) {
+                                 double resolution, double travel, CollisionReport* report) {
   Impl& m = *impl_;
   const int dof = m.model.dof();
   if (q0.size() != dof || q1.size() != dof)
     throw std::invalid_argument(m.model.name + ": motion_free needs two configurations of " +
                                 std::to_string(dof) + " values");
-  if (!q0.allFinite() || !q1.allFinite())
-    throw std::invalid_argument(m.model.name + ": motion_free: q is not finite");
-  const int steps = motion_steps(m.reach, m.travel, q0, q1, resolution);
+  if (!q0.allFinite() || !q1.allFinite() || !(travel >= 0) || !std::isfinite(travel))
+    throw std::invalid_argument(m.model.name + ": motion_free: q or the travel is not finite");
+  if (travel > 0 && m.reach.size() == 0) m.reach = motion_reach(m.model);  // once
+  const int steps = motion_steps(m.reach, travel, q0, q1, resolution);
   return all_samples_free(steps, [&](int k) {
     forward_kinematics(m.model, q0 + (static_cast<double>(k) / steps) * (q1 - q0), m.scratch);
     return !m.check(m.scratch, report);

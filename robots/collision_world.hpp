@@ -166,7 +166,13 @@ class CollisionWorld {
   /// more than set_motion_travel()'s distance), is free. Both ends are
   /// checked; samples are visited coarse-to-fine (bisection order), so collisions show early.
   bool motion_free(const Eigen::VectorXd& q0, const Eigen::VectorXd& q1, double resolution,
-                   CollisionReport* report = nullptr);
+                   CollisionReport* report = nullptr) {
+    return motion_free(q0, q1, resolution, motion_travel(), report);
+  }
+  /// The same with its own travel bound (m, >= 0; 0: joint resolution alone) in place of
+  /// set_motion_travel()'s, for a caller that needs a finer check than the world's other users.
+  bool motion_free(const Eigen::VectorXd& q0, const Eigen::VectorXd& q1, double resolution,
+                   double travel, CollisionReport* report = nullptr);
 
   /// What the last in_collision, link_in_collision or motion_free touched of the environment (a
   /// box, a cylinder, unseen space): no hit when its contact was another (the object, the robot

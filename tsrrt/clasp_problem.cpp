@@ -65,10 +65,8 @@ MotionCheck ClaspProblem::check_motion(const Eigen::VectorXd& q0, const Eigen::V
 
 bool ClaspProblem::shortcut_free(const Eigen::VectorXd& q0, const Eigen::VectorXd& q1) {
   const double travel = world_.motion_travel();
-  world_.set_motion_travel(travel > 0.0 ? std::min(travel, kShortcutTravel) : kShortcutTravel);
-  const bool free = world_.motion_free(q0, q1, resolution_);
-  world_.set_motion_travel(travel);
-  return free;
+  return world_.motion_free(q0, q1, resolution_,
+                            travel > 0.0 ? std::min(travel, kShortcutTravel) : kShortcutTravel);
 }
 
 std::vector<Eigen::Vector3d> ClaspProblem::unseen_contacts() const {

@@ -49,8 +49,10 @@ struct EscapeSearchOptions {
   int pull_attempts = 4;
   int pull_retries = 4;
   std::uint64_t seed = 1;
-  /// Give up (timed_out) once this passes.
+  /// Give up (timed_out) once this passes, or once `cancelled` (called from the search's thread,
+  /// whichever that is) returns true.
   std::optional<std::chrono::steady_clock::time_point> deadline;
+  std::function<bool()> cancelled;
 };
 
 /// The object and the closed hand as a search sees them. The object moves rigidly by T (world

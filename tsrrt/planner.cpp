@@ -166,11 +166,12 @@ class TsRrt {
 
   PlanResult run(const Eigen::VectorXd& q_init) {
     grow(q_init);
-    int restart_at = p_.restart_cycles;  // the current tree's last cycle
     for (result_.cycles = 1; result_.cycles <= p_.max_cycles; ++result_.cycles) {
       if (out_of_time()) break;
-      if (p_.restart_cycles > 0 && result_.cycles > restart_at) {
-        restart_at += p_.restart_cycles * luby(result_.outcomes.restarts + 2);
+      // The current tree lives restart_cycles times the next term of Luby's sequence.
+      if (p_.restart_cycles > 0 &&
+          result_.cycles >
+              restarted_at_ + p_.restart_cycles * luby(result_.outcomes.restarts + 1)) {
         restarted_at_ = result_.cycles - 1;
         ++result_.outcomes.restarts;
         grow(q_init);
@@ -478,19 +479,34 @@ PlanResult build_ts_rrt(PlanningProblem& problem, const Eigen::VectorXd& q_init,
 
 std::vector<Eigen::VectorXd> prune_path(PlanningProblem& problem, std::vector<Eigen::VectorXd> path,
                                         int attempts, std::uint64_t seed) {
+  // Shortcuts are found with the search's check and only the kept ones get shortcut_free()'s
+  // finer one: most tried shortcuts are later cut by longer ones.
+  std::vector<std::size_t> original(path.size());  // each waypoint's index in `path`
+  for (std::size_t k = 0; k < path.size(); ++k) original[k] = k;
+  std::vector<Eigen::VectorXd> pruned = path;
   std::mt19937_64 rng(seed);
-  for (int a = 0; a < attempts && path.size() > 2; ++a) {
-    const auto n = path.size();
+  for (int a = 0; a < attempts && pruned.size() > 2; ++a) {
+    const auto n = pruned.size();
     std::size_t i = static_cast<std::size_t>(uniform01(rng()) * n);
     std::size_t j = static_cast<std::size_t>(uniform01(rng()) * n);
     if (i > j) std::swap(i, j);
     if (j < i + 2) continue;
-    if (problem.shortcut_free(path[i], path[j])) {
-      path.erase(path.begin() + static_cast<std::ptrdiff_t>(i) + 1,
-                 path.begin() + static_cast<std::ptrdiff_t>(j));
+    if (problem.motion_free(pruned[i], pruned[j])) {
+      const auto first = static_cast<std::ptrdiff_t>(i) + 1, last = static_cast<std::ptrdiff_t>(j);
+      pruned.erase(pruned.begin() + first, pruned.begin() + last);
+      original.erase(original.begin() + first, original.begin() + last);
     }
   }
-  return path;
+  // A kept shortcut that fails the finer check gives its steps back.
+  std::vector<Eigen::VectorXd> out{path.front()};
+  for (std::size_t k = 1; k < pruned.size(); ++k) {
+    const std::size_t from = original[k - 1], to = original[k];
+    if (to > from + 1 && !problem.shortcut_free(path[from], path[to]))
+      out.insert(out.end(), path.begin() + static_cast<std::ptrdiff_t>(from) + 1,
+                 path.begin() + static_cast<std::ptrdiff_t>(to));
+    out.push_back(path[to]);
+  }
+  return out;
 }
 
 }  // namespace claspplan::tsrrt

@@ -125,7 +125,9 @@ PlanResult build_ts_rrt(PlanningProblem& problem, const Eigen::VectorXd& q_init,
                         const std::vector<TaskPoint>& goals, const PlannerParameters& p);
 
 /// Randomized path pruning: `attempts` times, pick two waypoints at random and join them directly
-/// when PlanningProblem::shortcut_free() allows that motion. The first and last waypoints stay.
+/// when PlanningProblem::motion_free() allows that motion; then each shortcut kept that
+/// PlanningProblem::shortcut_free() refuses is replaced by the steps it cut. The first and last
+/// waypoints stay.
 std::vector<Eigen::VectorXd> prune_path(PlanningProblem& problem, std::vector<Eigen::VectorXd> path,
                                         int attempts, std::uint64_t seed);
 

@@ -9,6 +9,7 @@
 #include "tsrrt/secure_clasp.hpp"
 
 #include <algorithm>
+#include <atomic>
 #include <chrono>
 #include <cmath>
 #include <limits>
@@ -254,38 +255,59 @@ std::shared_ptr<const robots::ObjectGeometry> object_near_hand(
   return robots::make_object_geometry(vertices, triangles, o.exact_round_shapes);
 }
 
-// The escape stages after the random motions passed, in `world` (the robot at q placed in
-// `data`), until one frees the object or times out.
-void run_escape_stages(const robots::RobotModel& model, robots::CollisionWorld& world,
+// The escape stages after the random motions passed, one per world at a time (the robot at q
+// placed in `data`). The report holds the stages up to the first that frees the object or times
+// out; a later stage still running is cancelled, and every later one is reported as not run, so
+// the report does not depend on which finished first.
+void run_escape_stages(const robots::RobotModel& model, std::vector<robots::CollisionWorld>& worlds,
                        const robots::RobotData& data, const Eigen::VectorXd& q,
                        const servo::Points& loop, const std::vector<Eigen::Vector3d>& vertices,
                        const SecureClaspOptions& o, SecureClaspReport& report) {
-  const EscapeProblem problem =
-      escape_problem(model, q, loop, vertices, [&](const Eigen::Isometry3d& T) {
-        world.set_object_pose(T);
-        return world.object_in_collision(data);
-      });
-  EscapeSearchOptions eo = o.escape;
-  eo.seed = o.seed;
-  eo.deadline = o.deadline;
-  eo.translation_step = o.translation_step;
-  eo.rotation_step = o.rotation_step;
-  bool stopped = false;
-  for (const EscapeStage stage :
-       {EscapeStage::kEscapeSearch, EscapeStage::kGravity, EscapeStage::kApproach}) {
-    if (!stopped && o.stop && o.stop()) {  // ended by the caller: not passed
-      stopped = true;
-      report.secure = false;
-      report.timed_out = true;
-    }
-    if (stopped) {
+  constexpr EscapeStage kStages[] = {EscapeStage::kEscapeSearch, EscapeStage::kGravity,
+                                     EscapeStage::kApproach};
+  constexpr int kCount = 3;
+  // The caller's stop is polled on its own thread only (Python's Ctrl-C check needs that).
+  if (o.stop && o.stop()) {
+    report.secure = false;
+    report.timed_out = true;
+    for (const EscapeStage stage : kStages)
       report.stages.push_back({stage_name(stage), false, false, false, 0, 0.0, std::nullopt});
+    return;
+  }
+  std::vector<EscapeProblem> problems;
+  for (robots::CollisionWorld& world : worlds)
+    problems.push_back(
+        escape_problem(model, q, loop, vertices, [w = &world, &data](const Eigen::Isometry3d& T) {
+          w->set_object_pose(T);
+          return w->object_in_collision(data);
+        }));
+  std::atomic<int> first_failed{kCount};
+  std::vector<VerificationStage> runs(kCount);
+  parallel_for(kCount, static_cast<int>(worlds.size()), [&](std::size_t k, int worker) {
+    const int stage = static_cast<int>(k);
+    if (first_failed.load() < stage) return;
+    EscapeSearchOptions eo = o.escape;
+    eo.seed = o.seed;
+    eo.deadline = o.deadline;
+    eo.cancelled = [&] { return first_failed.load() < stage; };
+    eo.translation_step = o.translation_step;
+    eo.rotation_step = o.rotation_step;
+    runs[k] = run_escape_stage(kStages[k], problems[worker], eo);
+    if (runs[k].passed) return;
+    int failed = first_failed.load();
+    while (stage < failed && !first_failed.compare_exchange_weak(failed, stage)) {
+    }
+  });
+  for (robots::CollisionWorld& world : worlds) world.set_object_pose(Eigen::Isometry3d::Identity());
+  const int failed = first_failed.load();
+  for (int k = 0; k < kCount; ++k) {
+    if (k > failed) {
+      report.stages.push_back({stage_name(kStages[k]), false, false, false, 0, 0.0, std::nullopt});
       continue;
     }
-    report.stages.push_back(run_escape_stage(stage, problem, eo));
+    report.stages.push_back(std::move(runs[k]));
     const VerificationStage& v = report.stages.back();
     if (v.passed) continue;
-    stopped = true;
     report.secure = false;
     report.timed_out |= v.timed_out;
     if (v.escape) {
@@ -293,7 +315,6 @@ void run_escape_stages(const robots::RobotModel& model, robots::CollisionWorld& 
       report.escape_stage = v.name;
     }
   }
-  world.set_object_pose(Eigen::Isometry3d::Identity());
 }
 
 // Runs the check; `rounds_done` (optional) tells how many rounds ran. `vertices`: the whole
@@ -352,7 +373,7 @@ SecureClaspReport run_check(const robots::RobotModel& model,
   report.stages.push_back(std::move(random));
   if (report.escape) report.escape_stage = "random_motions";
   if (report.secure && o.escape_stages)
-    run_escape_stages(model, worlds.front(), data, q, loop, vertices, o, report);
+    run_escape_stages(model, worlds, data, q, loop, vertices, o, report);
   return report;
 }
 

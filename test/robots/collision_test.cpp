@@ -8,6 +8,7 @@
 
 #include "robots/collision_world.hpp"
 #include "test/robots/test_meshes.hpp"
+#include "test/support/wire_sweep.hpp"
 
 namespace claspplan::robots {
 namespace {
@@ -341,15 +342,10 @@ TEST(Collision, MotionThroughAnObstacleIsRefused) {
 TEST(Collision, AWireBetweenTwoCheckedConfigurationsIsFoundByTheTravelBound) {
   const RobotModel m = load_robot("kr5_icub");
   CollisionWorld world(m);
-  // A 4 mm wire across the fingers' sweep at HOME (the post of the test above, thinned).
-  world.add_box(at(0.65, 0.0, 0.79), {0.004, 0.004, 0.3});
-  Eigen::VectorXd q0 = m.home, q1 = m.home;
-  q0[0] = 5 * kDeg;
-  q1[0] = -5 * kDeg;
+  const auto [q0, q1] = claspplan::test::add_wire_across_sweep(world, m);
   ASSERT_TRUE(world.in_collision(m.home));
   ASSERT_FALSE(world.in_collision(q0));
   ASSERT_FALSE(world.in_collision(q1));
-  // 0.17 rad at 0.2 rad per check: only the two ends, 11 cm apart at the fingers.
   EXPECT_TRUE(world.motion_free(q0, q1, 0.2));
   world.set_motion_travel(0.005);
   CollisionReport report;
@@ -357,6 +353,10 @@ TEST(Collision, AWireBetweenTwoCheckedConfigurationsIsFoundByTheTravelBound) {
   EXPECT_EQ(report.second, "box 0");
   world.set_motion_travel(0.0);
   EXPECT_TRUE(world.motion_free(q0, q1, 0.2));
+  // A bound given to the one check, the world's left as it was.
+  EXPECT_FALSE(world.motion_free(q0, q1, 0.2, 0.005));
+  EXPECT_EQ(world.motion_travel(), 0.0);
+  EXPECT_THROW(world.motion_free(q0, q1, 0.2, -0.001), std::invalid_argument);
   EXPECT_THROW(world.set_motion_travel(-0.001), std::invalid_argument);
   EXPECT_THROW(world.set_motion_travel(std::nan("")), std::invalid_argument);
 }

@@ -9,6 +9,7 @@
 #include "robots/collision_world.hpp"
 #include "robots/robot_model.hpp"
 #include "servo/clasp_controller.hpp"
+#include "test/support/wire_sweep.hpp"
 
 namespace claspplan::test {
 namespace {
@@ -18,22 +19,15 @@ constexpr double kDeg = 3.14159265358979 / 180.0;
 TEST(ClaspProblem, AShortcutThatStepsOverAWireIsNotFree) {
   const robots::RobotModel m = robots::load_robot("kr5_icub");
   robots::CollisionWorld world(m);
-  // A 4 mm wire across the fingers' sweep at HOME, 0.65 m out.
-  Eigen::Isometry3d wire = Eigen::Isometry3d::Identity();
-  wire.translation() = Eigen::Vector3d(0.65, 0.0, 0.79);
-  world.add_box(wire, {0.004, 0.004, 0.3});
+  auto [q0, q1] = add_wire_across_sweep(world, m);
   // Any loop: the check does not depend on it.
   servo::Points loop;
   for (int i = 0; i < 12; ++i)
     loop.push_back(
         Eigen::Vector3d(0.6, 0.05 * std::cos(i * 30 * kDeg), 0.3 + 0.05 * std::sin(i * 30 * kDeg)));
   servo::ClaspController controller(m, loop, {{loop[0], Eigen::Vector3d::UnitZ()}});
-  // The search's steps are checked every 0.2 rad: the 0.17 rad sweep below only at its ends,
-  // 11 cm apart at the fingers.
+  // The search's steps are checked every 0.2 rad: the sweep only at its ends.
   tsrrt::ClaspProblem problem(controller, world, 0.65, 0.0, 0.2);
-  Eigen::VectorXd q0 = m.home, q1 = m.home;
-  q0[0] = 5 * kDeg;
-  q1[0] = -5 * kDeg;
   ASSERT_TRUE(world.in_collision(m.home));
   EXPECT_TRUE(problem.motion_free(q0, q1));
   EXPECT_FALSE(problem.shortcut_free(q0, q1));

@@ -6,6 +6,7 @@
 #include "tsrrt/escape_search.hpp"
 
 #include <cstring>
+#include <tuple>
 
 #include <gtest/gtest.h>
 
@@ -211,6 +212,38 @@ TEST(EscapeSearch, SameSeedSameReport) {
   for (std::size_t i = 0; i < a.stages.size(); ++i) {
     EXPECT_EQ(a.stages[i].passed, b.stages[i].passed) << i;
     EXPECT_EQ(a.stages[i].iterations, b.stages[i].iterations) << i;
+  }
+}
+
+// The escape stages run side by side, one per thread: the report is the same with one thread or
+// two, when every stage holds and when the first frees the object (the two after it: not run, the
+// one running beside it cancelled).
+TEST(EscapeSearch, TheReportDoesNotDependOnTheThreads) {
+  const robots::RobotModel m = test::capsule_hand();
+  const Eigen::VectorXd straight = straight_fingers(m), closed = test::closed_hand(m);
+  const Ring hung = hung_on_palm(), held = test::ring_with_bottom_at({0, 0, 0.026});
+  for (const auto& [ring, q, secure] :
+       {std::tuple{&hung, &straight, false}, std::tuple{&held, &closed, true}}) {
+    SecureClaspOptions o = short_random_motions();
+    o.sequences = 2;  // a world per thread
+    const SecureClaspReport one = check(m, *ring, *q, o);
+    o.threads = 2;
+    const SecureClaspReport two = check(m, *ring, *q, o);
+    EXPECT_EQ(one.secure, secure);
+    EXPECT_EQ(two.secure, secure);
+    EXPECT_EQ(one.escape_stage, two.escape_stage);
+    ASSERT_EQ(one.stages.size(), 4u);
+    ASSERT_EQ(two.stages.size(), 4u);
+    for (std::size_t i = 0; i < 4; ++i) {
+      EXPECT_EQ(one.stages[i].ran, two.stages[i].ran) << i;
+      EXPECT_EQ(one.stages[i].passed, two.stages[i].passed) << i;
+      EXPECT_EQ(one.stages[i].iterations, two.stages[i].iterations) << i;
+    }
+    EXPECT_EQ(two.stages[3].ran, secure);  // after the search that freed the ring: not run
+    ASSERT_EQ(one.escape.has_value(), two.escape.has_value());
+    if (one.escape) {
+      EXPECT_EQ(one.escape->matrix(), two.escape->matrix());
+    }
   }
 }
 

@@ -3,6 +3,7 @@
 // front of the goal and a joint limit.
 #include "tsrrt/planner.hpp"
 
+#include <algorithm>
 #include <chrono>
 #include <cstdint>
 #include <functional>
@@ -440,6 +441,50 @@ TEST(PathPruning, ShortensAndKeepsTheEnds) {
   for (std::size_t i = 0; i + 1 < pruned.size(); ++i)
     EXPECT_TRUE(toy.motion_free(pruned[i], pruned[i + 1]));
   EXPECT_EQ(tsrrt::prune_path(toy, r.path, 200, 3), pruned);  // seeded
+}
+
+// Shortcuts are found by the search's check, and each kept one must pass the finer
+// shortcut_free(): one refused gives back the steps it cut, the others stay.
+TEST(PathPruning, AShortcutRefusedByTheFinerCheckGivesBackItsSteps) {
+  struct FinerToy : ToyProblem {
+    double refuse_beyond_x = 0.0;  // no shortcut may end past this x
+    int refused = 0, calls = 0;
+    bool shortcut_free(const Eigen::VectorXd& q0, const Eigen::VectorXd& q1) override {
+      ++calls;
+      if (std::max(q0[0], q1[0]) > refuse_beyond_x) return ++refused, false;
+      return motion_free(q0, q1);
+    }
+  };
+  FinerToy toy;
+  toy.refuse_beyond_x = std::numeric_limits<double>::infinity();
+  const auto r = tsrrt::build_ts_rrt(toy, kStart, kGoals, toy_parameters());
+  ASSERT_TRUE(r.success);
+  const auto pruned = tsrrt::prune_path(toy, r.path, 200, 3);
+  ASSERT_LT(pruned.size(), r.path.size());
+  EXPECT_EQ(toy.refused, 0);
+  EXPECT_LT(toy.calls, static_cast<int>(pruned.size()));  // the kept shortcuts only
+  // Refusing the shortcuts near the goal keeps the path's end as the search made it.
+  toy.refuse_beyond_x = r.path[r.path.size() / 2][0];
+  const auto finer = tsrrt::prune_path(toy, r.path, 200, 3);
+  EXPECT_GT(toy.refused, 0);
+  EXPECT_GT(finer.size(), pruned.size());
+  EXPECT_EQ(finer.front(), r.path.front());
+  std::size_t k = 0;  // every waypoint is the search's, in its order
+  for (const auto& q : finer) {
+    while (k < r.path.size() && r.path[k] != q) ++k;
+    ASSERT_LT(k, r.path.size());
+  }
+  for (std::size_t i = 0; i + 1 < finer.size(); ++i) {
+    const bool shortcut = std::find(r.path.begin(), r.path.end(), finer[i + 1]) -
+                              std::find(r.path.begin(), r.path.end(), finer[i]) >
+                          1;
+    if (shortcut) {
+      EXPECT_LE(std::max(finer[i][0], finer[i + 1][0]), toy.refuse_beyond_x);
+    }
+  }
+  // Refusing every shortcut gives the search's path back.
+  toy.refuse_beyond_x = -std::numeric_limits<double>::infinity();
+  EXPECT_EQ(tsrrt::prune_path(toy, r.path, 200, 3), r.path);
 }
 
 }  // namespace
