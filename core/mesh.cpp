@@ -67,6 +67,22 @@ void append_mesh(TriangleMesh& a, const TriangleMesh& b) {
     a.triangles.push_back({t[0] + offset, t[1] + offset, t[2] + offset});
 }
 
+TriangleMesh box_mesh(const Eigen::Vector3d& size) {
+  TriangleMesh m;
+  const Eigen::Vector3d h = size / 2.0;
+  for (int i = 0; i < 8; ++i) {
+    m.vertices.emplace_back((i & 1) ? h.x() : -h.x(), (i & 2) ? h.y() : -h.y(),
+                            (i & 4) ? h.z() : -h.z());
+  }
+  const int faces[6][4] = {{0, 2, 3, 1}, {4, 5, 7, 6}, {0, 1, 5, 4},
+                           {2, 6, 7, 3}, {0, 4, 6, 2}, {1, 3, 7, 5}};
+  for (const auto& f : faces) {
+    m.triangles.emplace_back(f[0], f[1], f[2]);
+    m.triangles.emplace_back(f[0], f[2], f[3]);
+  }
+  return m;
+}
+
 TriangleMesh transformed(const TriangleMesh& mesh, const Eigen::Isometry3d& T) {
   TriangleMesh out = mesh;
   for (auto& v : out.vertices) v = T * v;

@@ -38,6 +38,10 @@ int degenerate_triangle_count(const TriangleMesh& mesh);
 /// Appends `b` to `a` (indices shifted).
 void append_mesh(TriangleMesh& a, const TriangleMesh& b);
 
+/// A box of edge lengths `size` centred at the origin, its edges along the axes: 12 triangles,
+/// facing outwards.
+TriangleMesh box_mesh(const Eigen::Vector3d& size);
+
 /// Applies a rigid transform to every vertex.
 TriangleMesh transformed(const TriangleMesh& mesh, const Eigen::Isometry3d& T);
 

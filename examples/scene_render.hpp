@@ -12,8 +12,7 @@
 
 namespace claspplan::cli {
 
-/// Triangulated primitives (centred at the origin; cylinders and capsules along z).
-TriangleMesh box_mesh(const Eigen::Vector3d& size);
+/// Triangulated primitives (centred at the origin, along z; the box is core's box_mesh).
 TriangleMesh cylinder_mesh(double radius, double length, int sides = 16);
 TriangleMesh sphere_mesh(double radius, int sides = 16);
 TriangleMesh capsule_mesh(double radius, double length, int sides = 16);

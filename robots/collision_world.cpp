@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <optional>
 #include <stdexcept>
 
 #include <fcl/geometry/bvh/BVH_model.h>
@@ -70,8 +71,8 @@ struct EnvItem {
   Geometry geometry;
   Eigen::Isometry3d pose;
   Box3 box;
-  bool unseen = false;    // the sensed map's unknown voxels (add_voxels)
-  bool measured = false;  // measured points the object's mesh leaves out (add_voxels)
+  // add_voxels' kind; none for a box or a cylinder.
+  std::optional<CollisionWorld::VoxelKind> voxels = std::nullopt;
 };
 
 Geometry make_geometry(const CollisionShape& s) {
@@ -277,8 +278,9 @@ struct CollisionWorld::Impl {
     const int e = shape_hits_environment(s);
     // Measured voxels are the object's material. Unseen voxels lie behind the seen surface too:
     // a shape through both met the object first.
-    const bool object = (e >= 0 && environment[e].measured) ||
-                        ((e < 0 || environment[e].unseen) && shape_hits_object(s));
+    using Kind = CollisionWorld::VoxelKind;
+    const bool object = (e >= 0 && environment[e].voxels == Kind::kMeasured) ||
+                        ((e < 0 || environment[e].voxels == Kind::kUnseen) && shape_hits_object(s));
     if (object) {
       report(r, link, "object");
       return true;
@@ -396,8 +398,7 @@ void CollisionWorld::add_voxels(const std::vector<Eigen::Vector3d>& centres, dou
   impl_->environment.push_back(
       {kind == VoxelKind::kUnseen ? "unseen space" : "measured points",
        std::make_shared<fcl::OcTreed>(std::shared_ptr<const octomap::OcTree>(std::move(tree))),
-       Eigen::Isometry3d::Identity(), Box3{bounds.min() - half, bounds.max() + half},
-       kind == VoxelKind::kUnseen, kind == VoxelKind::kMeasured});
+       Eigen::Isometry3d::Identity(), Box3{bounds.min() - half, bounds.max() + half}, kind});
 }
 
 void CollisionWorld::clear_environment() {

@@ -12,13 +12,13 @@
 #include <unistd.h>
 
 #include "core/file_io.hpp"
+#include "core/mesh.hpp"
 #include "robots/collision_world.hpp"
 #include "robots/convex_hull.hpp"
 #include "robots/embedded_models.hpp"
 #include "robots/hand_size.hpp"
 #include "robots/kinematics.hpp"
 #include "robots/robot_model.hpp"
-#include "test/support/box_mesh.hpp"
 
 namespace claspplan::robots {
 namespace {
@@ -36,7 +36,7 @@ std::string replaced(std::string text, const std::string& from, const std::strin
 
 // A unit cube centred at the origin.
 TriangleMesh unit_cube() {
-  return test::box_mesh(Eigen::Isometry3d::Identity(), Eigen::Vector3d::Ones());
+  return box_mesh(Eigen::Vector3d::Ones());
 }
 
 // The cube stretched to twice its height, as COLLADA in millimetres (<unit meter="0.001">, Z_UP,

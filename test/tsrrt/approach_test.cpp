@@ -8,10 +8,10 @@
 #include <Eigen/Geometry>
 #include <gtest/gtest.h>
 
+#include "core/mesh.hpp"
 #include "robots/collision_world.hpp"
 #include "robots/kinematics.hpp"
 #include "robots/robot_model.hpp"
-#include "test/support/box_mesh.hpp"
 
 namespace claspplan::test {
 namespace {
@@ -109,7 +109,8 @@ TEST(ApproachToContact, KeepsTheClearanceFromTheObject) {
   int earlier = 0;
   for (int k = 0; k < 8; ++k) {
     const Eigen::Vector3d near = start.tcp + (reach + 0.02 + 0.0005 * k) * direction;
-    const TriangleMesh plate = box_mesh(plate_pose(near, direction), {0.3, 0.3, 0.004});
+    const TriangleMesh plate =
+        transformed(box_mesh({0.3, 0.3, 0.004}), plate_pose(near, direction));
     robots::CollisionWorld world(m);
     world.set_object(plate.vertices, plate.triangles);
     const auto deep = tsrrt::approach_until_contact(m, world, q, touching);

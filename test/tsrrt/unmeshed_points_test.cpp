@@ -1,10 +1,10 @@
 // Measured material the depth surface leaves out (tsrrt/clasp_scene.hpp's unmeshed_points).
 #include <gtest/gtest.h>
 
+#include "core/mesh.hpp"
 #include "examples/objects.hpp"
 #include "perception/depth_render.hpp"
 #include "perception/depth_surface.hpp"
-#include "test/support/box_mesh.hpp"
 #include "tsrrt/clasp_scene.hpp"
 
 namespace claspplan::test {
@@ -17,10 +17,10 @@ struct RodScene {
   int rod_triangles = 0;  // surface triangles within 0.1 m of the rod
 };
 RodScene rod_scene(double width) {
-  TriangleMesh scene =
-      box_mesh(Eigen::Isometry3d(Eigen::Translation3d(1.0, 0.0, 0.5)), {0.02, 0.6, 0.6});
-  append_mesh(
-      scene, box_mesh(Eigen::Isometry3d(Eigen::Translation3d(0.6, 0.0, 0.5)), {width, width, 0.2}));
+  TriangleMesh scene = transformed(box_mesh({0.02, 0.6, 0.6}),
+                                   Eigen::Isometry3d(Eigen::Translation3d(1.0, 0.0, 0.5)));
+  append_mesh(scene, transformed(box_mesh({width, width, 0.2}),
+                                 Eigen::Isometry3d(Eigen::Translation3d(0.6, 0.0, 0.5))));
   perception::DepthView view;
   view.camera = objects::kinect_camera({0.0, 0.0, 0.5}, {1.0, 0.0, 0.5});
   view.image = perception::render_depth(scene, view.camera);
