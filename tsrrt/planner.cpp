@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cstdio>
 #include <limits>
+#include <numeric>
 #include <optional>
 #include <random>
 #include <set>
@@ -481,26 +482,23 @@ std::vector<Eigen::VectorXd> prune_path(PlanningProblem& problem, std::vector<Ei
                                         int attempts, std::uint64_t seed) {
   // Shortcuts are found with the search's check and only the kept ones get shortcut_free()'s
   // finer one: most tried shortcuts are later cut by longer ones.
-  std::vector<std::size_t> original(path.size());  // each waypoint's index in `path`
-  for (std::size_t k = 0; k < path.size(); ++k) original[k] = k;
-  std::vector<Eigen::VectorXd> pruned = path;
+  std::vector<std::size_t> kept(path.size());  // the waypoints kept, as indices into `path`
+  std::iota(kept.begin(), kept.end(), std::size_t{0});
   std::mt19937_64 rng(seed);
-  for (int a = 0; a < attempts && pruned.size() > 2; ++a) {
-    const auto n = pruned.size();
+  for (int a = 0; a < attempts && kept.size() > 2; ++a) {
+    const auto n = kept.size();
     std::size_t i = static_cast<std::size_t>(uniform01(rng()) * n);
     std::size_t j = static_cast<std::size_t>(uniform01(rng()) * n);
     if (i > j) std::swap(i, j);
     if (j < i + 2) continue;
-    if (problem.motion_free(pruned[i], pruned[j])) {
-      const auto first = static_cast<std::ptrdiff_t>(i) + 1, last = static_cast<std::ptrdiff_t>(j);
-      pruned.erase(pruned.begin() + first, pruned.begin() + last);
-      original.erase(original.begin() + first, original.begin() + last);
-    }
+    if (problem.motion_free(path[kept[i]], path[kept[j]]))
+      kept.erase(kept.begin() + static_cast<std::ptrdiff_t>(i) + 1,
+                 kept.begin() + static_cast<std::ptrdiff_t>(j));
   }
   // A kept shortcut that fails the finer check gives its steps back.
   std::vector<Eigen::VectorXd> out{path.front()};
-  for (std::size_t k = 1; k < pruned.size(); ++k) {
-    const std::size_t from = original[k - 1], to = original[k];
+  for (std::size_t k = 1; k < kept.size(); ++k) {
+    const std::size_t from = kept[k - 1], to = kept[k];
     if (to > from + 1 && !problem.shortcut_free(path[from], path[to]))
       out.insert(out.end(), path.begin() + static_cast<std::ptrdiff_t>(from) + 1,
                  path.begin() + static_cast<std::ptrdiff_t>(to));

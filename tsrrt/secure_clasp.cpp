@@ -12,6 +12,7 @@
 #include <atomic>
 #include <chrono>
 #include <cmath>
+#include <iterator>
 #include <limits>
 #include <unordered_map>
 
@@ -265,33 +266,39 @@ void run_escape_stages(const robots::RobotModel& model, std::vector<robots::Coll
                        const SecureClaspOptions& o, SecureClaspReport& report) {
   constexpr EscapeStage kStages[] = {EscapeStage::kEscapeSearch, EscapeStage::kGravity,
                                      EscapeStage::kApproach};
-  constexpr int kCount = 3;
+  constexpr int kCount = static_cast<int>(std::size(kStages));
+  const auto not_run = [](EscapeStage stage) {
+    VerificationStage v;
+    v.name = stage_name(stage);
+    return v;
+  };
   // The caller's stop is polled on its own thread only (Python's Ctrl-C check needs that).
   if (o.stop && o.stop()) {
     report.secure = false;
     report.timed_out = true;
-    for (const EscapeStage stage : kStages)
-      report.stages.push_back({stage_name(stage), false, false, false, 0, 0.0, std::nullopt});
+    for (const EscapeStage stage : kStages) report.stages.push_back(not_run(stage));
     return;
   }
-  std::vector<EscapeProblem> problems;
-  for (robots::CollisionWorld& world : worlds)
-    problems.push_back(
-        escape_problem(model, q, loop, vertices, [w = &world, &data](const Eigen::Isometry3d& T) {
-          w->set_object_pose(T);
-          return w->object_in_collision(data);
-        }));
+  // One problem per world the stages can use at once, each colliding in its own world.
+  const EscapeProblem problem = escape_problem(model, q, loop, vertices, nullptr);
+  std::vector<EscapeProblem> problems(std::min<std::size_t>(worlds.size(), kCount), problem);
+  for (std::size_t w = 0; w < problems.size(); ++w)
+    problems[w].collides = [world = &worlds[w], &data](const Eigen::Isometry3d& T) {
+      world->set_object_pose(T);
+      return world->object_in_collision(data);
+    };
+  EscapeSearchOptions options = o.escape;
+  options.seed = o.seed;
+  options.deadline = o.deadline;
+  options.translation_step = o.translation_step;
+  options.rotation_step = o.rotation_step;
   std::atomic<int> first_failed{kCount};
   std::vector<VerificationStage> runs(kCount);
-  parallel_for(kCount, static_cast<int>(worlds.size()), [&](std::size_t k, int worker) {
+  parallel_for(kCount, static_cast<int>(problems.size()), [&](std::size_t k, int worker) {
     const int stage = static_cast<int>(k);
     if (first_failed.load() < stage) return;
-    EscapeSearchOptions eo = o.escape;
-    eo.seed = o.seed;
-    eo.deadline = o.deadline;
+    EscapeSearchOptions eo = options;
     eo.cancelled = [&] { return first_failed.load() < stage; };
-    eo.translation_step = o.translation_step;
-    eo.rotation_step = o.rotation_step;
     runs[k] = run_escape_stage(kStages[k], problems[worker], eo);
     if (runs[k].passed) return;
     int failed = first_failed.load();
@@ -302,7 +309,7 @@ void run_escape_stages(const robots::RobotModel& model, std::vector<robots::Coll
   const int failed = first_failed.load();
   for (int k = 0; k < kCount; ++k) {
     if (k > failed) {
-      report.stages.push_back({stage_name(kStages[k]), false, false, false, 0, 0.0, std::nullopt});
+      report.stages.push_back(not_run(kStages[k]));
       continue;
     }
     report.stages.push_back(std::move(runs[k]));
