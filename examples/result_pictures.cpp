@@ -1,5 +1,8 @@
 #include "examples/result_pictures.hpp"
 
+#include <algorithm>
+#include <cmath>
+
 #include <Eigen/Geometry>
 
 #include "core/png_files.hpp"
@@ -63,21 +66,70 @@ void draw_robot(SceneImage& image, const robots::RobotModel& model, const Eigen:
   }
 }
 
-// The close-up view directions of the hand at q: along the loop's tangent (front) and across the
+// The close-up view directions of the hand at q, each with its mirror image across the closing
+// plane and a raised variant to fall back on: along the loop's tangent (front) and across the
 // closing plane (side), a little from behind the hand, so the palm and the fingers' far side both
 // show.
 struct ClaspViews {
-  Eigen::Vector3d front, side;
+  std::vector<Eigen::Vector3d> front, side;
 };
 ClaspViews clasp_views(const robots::RobotModel& model, const Eigen::VectorXd& q) {
   robots::RobotData data(model);
   robots::forward_kinematics(model, q, data);
   const Eigen::Vector3d forward = robots::vector_direction(data, model.v_fwd);
   const Eigen::Vector3d sideways = robots::vector_direction(data, model.v_swd);
-  return {sideways - 0.35 * forward, forward.cross(sideways) - 0.35 * forward + 0.3 * sideways};
+  const Eigen::Vector3d across = forward.cross(sideways);
+  const Eigen::Vector3d front = sideways - 0.35 * forward;
+  const Eigen::Vector3d side = across - 0.35 * forward + 0.3 * sideways;
+  const Eigen::Vector3d up = Eigen::Vector3d::UnitZ();
+  return {{front, -sideways - 0.35 * forward, front.normalized() + up},
+          {side, -across - 0.35 * forward + 0.3 * sideways, side.normalized() + up}};
+}
+
+// The scene without the environment boxes that block the view's line of sight.
+SceneGeometry cut_away(const SceneGeometry& scene, const View& view) {
+  SceneGeometry out{scene.model, scene.object, {}, scene.loop};
+  for (const auto& b : scene.boxes)
+    if (!blocks_sight(b, view)) out.boxes.push_back(b);
+  return out;
 }
 
 }  // namespace
+
+bool blocks_sight(const EnvironmentBox& box, const View& view) {
+  // The segment eye -> target clipped against the box's slabs, in the box's frame.
+  const Eigen::Vector3d a = box.pose.inverse() * view.eye;
+  const Eigen::Vector3d d = box.pose.inverse() * view.target - a;
+  const Eigen::Vector3d half = 0.5 * box.size;
+  double t0 = 0.0, t1 = 1.0;
+  for (int i = 0; i < 3; ++i) {
+    if (std::abs(d[i]) < 1e-12) {
+      if (std::abs(a[i]) > half[i]) return false;
+      continue;
+    }
+    double lo = (-half[i] - a[i]) / d[i], hi = (half[i] - a[i]) / d[i];
+    if (lo > hi) std::swap(lo, hi);
+    t0 = std::max(t0, lo);
+    t1 = std::min(t1, hi);
+    if (t0 > t1) return false;
+  }
+  return true;
+}
+
+View unobstructed_view(const std::vector<Eigen::Vector3d>& frame,
+                       const std::vector<Eigen::Vector3d>& directions,
+                       const std::vector<EnvironmentBox>& boxes) {
+  View best;
+  long fewest = -1;
+  for (const auto& direction : directions) {
+    const View view = framing_view(frame, direction);
+    const long blocked = std::count_if(
+        boxes.begin(), boxes.end(), [&](const EnvironmentBox& b) { return blocks_sight(b, view); });
+    if (fewest < 0 || blocked < fewest) best = view, fewest = blocked;
+    if (blocked == 0) break;
+  }
+  return best;
+}
 
 void draw_scene(SceneImage& image, const SceneGeometry& scene, const Eigen::VectorXd& q,
                 bool hand_only) {
@@ -91,11 +143,12 @@ void write_clasp_views(const SceneGeometry& scene, const Eigen::VectorXd& q,
                        const std::string& dir) {
   const std::vector<Eigen::Vector3d> frame = hand_points(scene.model, q);
   const ClaspViews directions = clasp_views(scene.model, q);
-  const std::pair<const char*, Eigen::Vector3d> views[] = {{"clasp_front.png", directions.front},
-                                                           {"clasp_side.png", directions.side}};
-  for (const auto& [name, direction] : views) {
-    SceneImage image(framing_view(frame, direction));
-    draw_scene(image, scene, q, /*hand_only=*/true);
+  const std::pair<const char*, std::vector<Eigen::Vector3d>> views[] = {
+      {"clasp_front.png", directions.front}, {"clasp_side.png", directions.side}};
+  for (const auto& [name, candidates] : views) {
+    const View view = unobstructed_view(frame, candidates, scene.boxes);
+    SceneImage image(view);
+    draw_scene(image, cut_away(scene, view), q, /*hand_only=*/true);
     image.draw_label("final clasp (" + scene.model.name + "), loop in red; arm not drawn");
     image.save(dir + "/" + name);
   }
@@ -107,7 +160,8 @@ void write_escape_view(const SceneGeometry& scene, const Eigen::VectorXd& q,
   for (const auto& p : scene.loop) moved.push_back(escape * p);
   std::vector<Eigen::Vector3d> frame = hand_points(scene.model, q);
   frame.insert(frame.end(), moved.begin(), moved.end());
-  SceneImage image(framing_view(frame, clasp_views(scene.model, q).side));  // as clasp_side.png
+  // As clasp_side.png; the environment is not drawn here.
+  SceneImage image(unobstructed_view(frame, clasp_views(scene.model, q).side, scene.boxes));
   image.draw_mesh(scene.object, escape.matrix(), kObject);
   draw_robot(image, scene.model, q, /*hand_only=*/true);
   image.draw_polyline(scene.loop, true, kStartLoop, 2);

@@ -28,8 +28,20 @@ struct SceneGeometry {
 void draw_scene(SceneImage& image, const SceneGeometry& scene, const Eigen::VectorXd& q,
                 bool hand_only = false);
 
+/// Whether the line of sight from the view's eye to its target passes through the box.
+bool blocks_sight(const EnvironmentBox& box, const View& view);
+
+/// The framing view of `frame` along the first of `directions` whose line of sight no environment
+/// box blocks (a close-up looks past the table, not up through it); the one with the fewest
+/// blocking boxes when every one is blocked.
+View unobstructed_view(const std::vector<Eigen::Vector3d>& frame,
+                       const std::vector<Eigen::Vector3d>& directions,
+                       const std::vector<EnvironmentBox>& boxes);
+
 /// clasp_front.png and clasp_side.png: the hand at the final pose, close up, seen along the loop's
-/// tangent and across the closing plane (both square to the approach, so the arm is not between).
+/// tangent and across the closing plane (both square to the approach, so the arm is not between),
+/// from the side of the hand where no environment box is in the way; a box that still is (every
+/// side blocked) is left out of that picture.
 void write_clasp_views(const SceneGeometry& scene, const Eigen::VectorXd& q,
                        const std::string& dir);
 
