@@ -296,29 +296,46 @@ bool passage_open(Loop& loop, Passage p, const RankingOptions& options) {
   return true;
 }
 
-// A passage, not a cavity's opening. Followed downwards until it leaves the object's bounds,
-// the passage must not meet the supporting surface soon (a hole lying on the table: no room
-// for fingers beyond it), nor meet it after running between walls on every side (a container's
-// mouth whose inside bottom was unseen or removed with the table). False with the verdict.
+// The passage through the loop followed downwards (`down`, along the hole's normal) meets the
+// supporting surface (the table) `distance` from the hole; infinitely far without a support or
+// for a passage parallel to it.
+struct PassageDown {
+  Eigen::Vector3d down = Eigen::Vector3d::Zero();
+  double distance = std::numeric_limits<double>::infinity();
+};
+PassageDown passage_down(const Loop& loop, const RankingOptions& options, const Hole& hole) {
+  PassageDown p;
+  if (!options.support_plane) return p;
+  const SupportHeight support(options.support_plane);
+  const double descent = -support.up.dot(hole.normal);  // height lost per metre along +normal
+  if (std::abs(descent) <= 1e-9) return p;
+  p.down = (descent > 0 ? 1.0 : -1.0) * hole.normal;
+  p.distance = support(loop.centre) / std::abs(descent);
+  return p;
+}
+
+// A hole lying on the table: no room for fingers beyond it, and no camera could see through it.
+// False with the verdict.
+bool room_above_support(Loop& loop, const RankingOptions& options, const Hole& hole) {
+  const double t_floor = passage_down(loop, options, hole).distance;
+  if (t_floor >= std::max(kMinRoom, 2.0 * options.finger_thickness)) return true;
+  loop.verdict = LoopVerdict::kBlockedBySupport;
+  loop.reason =
+      "blocked by the support: the passage through the loop meets the supporting "
+      "surface " +
+      metres(t_floor) + " from the hole (no room for fingers beyond it)";
+  return false;
+}
+
+// A passage, not a cavity's opening: room above the support, and followed downwards until it
+// leaves the object's bounds, it must not meet the supporting surface after running between walls
+// on every side (a container's mouth whose inside bottom was unseen or removed with the table).
+// False with the verdict.
 bool clear_of_support(Loop& loop, const PointIndex& index, const Eigen::AlignedBox3d& bounds,
                       const RankingOptions& options, const Hole& hole) {
-  if (!options.support_plane) return true;
-  const Eigen::Vector3d& n = hole.normal;
-  const SupportHeight support(options.support_plane);
-  const Eigen::Vector3d& up = support.up;
-  const double height = support(loop.centre);
-  const double descent = -up.dot(n);  // height lost per metre along +n
-  const Eigen::Vector3d down = (descent > 0 ? 1.0 : -1.0) * n;
-  if (std::abs(descent) <= 1e-9) return true;
-  const double t_floor = height / std::abs(descent);
-  if (t_floor < std::max(kMinRoom, 2.0 * options.finger_thickness)) {
-    loop.verdict = LoopVerdict::kBlockedBySupport;
-    loop.reason =
-        "blocked by the support: the passage through the loop meets the "
-        "supporting surface " +
-        metres(t_floor) + " from the hole (no room for fingers beyond it)";
-    return false;
-  }
+  if (!room_above_support(loop, options, hole)) return false;
+  const auto [down, t_floor] = passage_down(loop, options, hole);
+  if (!std::isfinite(t_floor)) return true;
   // Within the object's extent (its lowest points may be cropped just above the table).
   const double link = options.link_distance > 0 ? options.link_distance : 0.01;
   if (t_floor > exit_distance(bounds, loop.centre, down) + 2.0 * link) return true;
@@ -335,8 +352,8 @@ bool clear_of_support(Loop& loop, const PointIndex& index, const Eigen::AlignedB
 }
 
 // `bounds`: the cloud's bounding box (computed once for all loops). The stages in order, each
-// refusing with its verdict: the hole's size, seen through, an open passage into seen space, the
-// support, the closed hand around the bar.
+// refusing with its verdict: the hole's size, seen through, an open passage into seen space (room
+// above the support told first with cameras), the support, the closed hand around the bar.
 void assess(Loop& loop, const PointIndex& index, const Eigen::AlignedBox3d& bounds,
             const std::vector<DepthView>& views, const RankingOptions& options) {
   loop.length = closed_length(loop.points);
@@ -364,6 +381,8 @@ void assess(Loop& loop, const PointIndex& index, const Eigen::AlignedBox3d& boun
   }
   if (!seen_through(loop, views, hole)) return;
   const Passage passage = probe_passage(loop, index, views, options, hole, min_hole);
+  // What the cameras saw beyond a hole lying on the table does not matter: told first.
+  if (passage.sensed && !room_above_support(loop, options, hole)) return;
   if (!passage_open(loop, passage, options)) return;
   if (!clear_of_support(loop, index, bounds, options, hole)) return;
   // The closed hand around the bar.

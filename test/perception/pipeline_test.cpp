@@ -257,6 +257,34 @@ TEST(Depth, OcclusionShadowIsNotClaspable) {
   }
 }
 
+TEST(Depth, AHoleLyingOnTheTableIsBlockedByTheSupportWhateverTheCamerasSaw) {
+  // A ring lying flat: its hole faces the table, so no finger passes it and no camera could see
+  // through it. Said so, rather than "never seen through" with a camera to add.
+  Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();
+  pose.translation().z() = 0.012;
+  TriangleMesh scene = objects::torus_mesh(0.05, 0.012, pose);
+  append_mesh(scene, objects::ground_plane(1.2));
+  test::TempDir dir;
+  std::vector<std::string> pngs, cams;
+  for (const auto& [png, yaml] :
+       objects::write_depth_files(scene, objects::purse_cameras(2), dir.path().string(), "ring")) {
+    pngs.push_back(png);
+    cams.push_back(yaml);
+  }
+  PerceptionOptions o;
+  o.finger_thickness = 0.014;
+  const ObjectModel m = build_object_model(load_inputs(pngs, cams), o);
+  EXPECT_EQ(m.best(), nullptr);
+  int blocked = 0;
+  for (const Loop& l : m.loops) {
+    if ((l.centre - pose.translation()).norm() > 0.02) continue;
+    EXPECT_EQ(l.verdict, perception::LoopVerdict::kBlockedBySupport) << l.reason;
+    EXPECT_EQ(l.reason.find("a camera at"), std::string::npos) << l.reason;
+    ++blocked;
+  }
+  EXPECT_EQ(blocked, 1);
+}
+
 TEST(Targets, EquallySpacedWithUnitTangents) {
   std::vector<Eigen::Vector3d> square = {{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}};
   const auto t = clasp_targets(square, 8);
