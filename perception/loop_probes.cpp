@@ -149,7 +149,8 @@ Sensed robot_view(const SensedSpace& space, const Eigen::Vector3d& q) {
 }
 
 FarSide far_side(const SensedSpace& space, const Eigen::Vector3d& centre, const Eigen::Vector3d& u,
-                 double length) {
+                 double length, const std::optional<Eigen::Vector4d>& support) {
+  const SupportHeight height(support);
   FarSide f;
   const Eigen::Vector3d a = u.unitOrthogonal(), b = u.cross(a);
   // Rings at 0, 20, 40 and 60 degrees from u, 6 points per 20 degrees of tilt.
@@ -160,8 +161,10 @@ FarSide far_side(const SensedSpace& space, const Eigen::Vector3d& centre, const 
       const double phi = 2.0 * M_PI * k / count;
       const Eigen::Vector3d d =
           std::cos(tilt) * u + std::sin(tilt) * (std::cos(phi) * a + std::sin(phi) * b);
-      const Sensed s = robot_view(space, centre + length * d);
+      const Eigen::Vector3d point = centre + length * d;
+      const Sensed s = robot_view(space, point);
       (s == Sensed::kFree ? f.free : s == Sensed::kOccupied ? f.occupied : f.unknown) += 1;
+      f.under_support += s != Sensed::kFree && height(point) < 0.0;
     }
   }
   return f;

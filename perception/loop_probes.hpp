@@ -57,8 +57,10 @@ void measure_bar(Loop& loop, const PointIndex& index, const std::vector<DepthVie
 /// What the sensed map says of the space beyond a hole on one side (direction u): a spherical cap
 /// of radius `length` (directions within 60 degrees of u) where the fingertips come out. Points
 /// outside the map's region count as free (sensed_space.hpp's rule for space far from the object).
+/// `under_support` of the points not free lie under the supporting surface: no camera sees there.
 struct FarSide {
   int free = 0, unknown = 0, occupied = 0;
+  int under_support = 0;
   double share_free() const {
     const int all = free + unknown + occupied;
     return all > 0 ? static_cast<double>(free) / all : 1.0;
@@ -69,7 +71,7 @@ struct FarSide {
 Sensed robot_view(const SensedSpace& space, const Eigen::Vector3d& q);
 
 FarSide far_side(const SensedSpace& space, const Eigen::Vector3d& centre, const Eigen::Vector3d& u,
-                 double length);
+                 double length, const std::optional<Eigen::Vector4d>& support);
 
 /// A camera position from which the hole would be seen through: on its axis, 0.6 m out, on the
 /// side whose space was seen (else the upper side), and above the support (a camera under the table

@@ -229,8 +229,9 @@ Passage probe_passage(const Loop& loop, const PointIndex& index,
     }
     // Seen into known-free space on both sides, where the fingertips come out.
     if (p.sensed && p.hole_seen) {
-      const FarSide plus = far_side(*p.sensed, loop.centre, u, p.far_length);
-      const FarSide minus = far_side(*p.sensed, loop.centre, -u, p.far_length);
+      const FarSide plus = far_side(*p.sensed, loop.centre, u, p.far_length, options.support_plane);
+      const FarSide minus =
+          far_side(*p.sensed, loop.centre, -u, p.far_length, options.support_plane);
       if (plus.share_free() < kFarSideFree || minus.share_free() < kFarSideFree) {
         if (!p.closed_side) {
           p.closed_side = plus.share_free() < minus.share_free() ? plus : minus;
@@ -263,6 +264,15 @@ bool passage_open(Loop& loop, Passage p, const RankingOptions& options) {
       const int share = static_cast<int>(std::lround(100.0 * (1.0 - f.share_free())));
       const std::string beyond =
           " of the space " + metres(p.far_length) + " beyond the hole, where fingertips come out, ";
+      if (2 * f.under_support >= f.unknown + f.occupied) {
+        // A hole facing the table (or a shallow container's mouth): no camera would see
+        // through it.
+        loop.verdict = LoopVerdict::kBlockedBySupport;
+        loop.reason = "blocked by the support: " + std::to_string(share) + "%" + beyond +
+                      "lies under the supporting surface (a hole facing the table, or a shallow "
+                      "container's mouth)";
+        return false;
+      }
       loop.verdict = f.occupied > f.unknown ? LoopVerdict::kEnclosed : LoopVerdict::kUnseenFarSide;
       what = f.occupied > f.unknown
                  ? "leads into enclosed space: " + std::to_string(share) + "%" + beyond +
@@ -321,8 +331,7 @@ bool room_above_support(Loop& loop, const RankingOptions& options, const Hole& h
   if (t_floor >= std::max(kMinRoom, 2.0 * options.finger_thickness)) return true;
   loop.verdict = LoopVerdict::kBlockedBySupport;
   loop.reason =
-      "blocked by the support: the passage through the loop meets the supporting "
-      "surface " +
+      "blocked by the support: the passage through the loop meets the supporting surface " +
       metres(t_floor) + " from the hole (no room for fingers beyond it)";
   return false;
 }
