@@ -324,10 +324,10 @@ PassageDown passage_down(const Loop& loop, const RankingOptions& options, const 
   return p;
 }
 
-// A hole lying on the table: no room for fingers beyond it, and no camera could see through it.
-// False with the verdict.
-bool room_above_support(Loop& loop, const RankingOptions& options, const Hole& hole) {
-  const double t_floor = passage_down(loop, options, hole).distance;
+// A hole lying on the table (the passage meets it at below.distance): no room for fingers beyond
+// it, and no camera could see through it. False with the verdict.
+bool room_above_support(Loop& loop, const RankingOptions& options, const PassageDown& below) {
+  const double t_floor = below.distance;
   if (t_floor >= std::max(kMinRoom, 2.0 * options.finger_thickness)) return true;
   loop.verdict = LoopVerdict::kBlockedBySupport;
   loop.reason =
@@ -336,14 +336,13 @@ bool room_above_support(Loop& loop, const RankingOptions& options, const Hole& h
   return false;
 }
 
-// A passage, not a cavity's opening: room above the support, and followed downwards until it
-// leaves the object's bounds, it must not meet the supporting surface after running between walls
-// on every side (a container's mouth whose inside bottom was unseen or removed with the table).
-// False with the verdict.
+// A passage, not a cavity's opening: followed downwards (`below`) until it leaves the object's
+// bounds, it must not meet the supporting surface after running between walls on every side (a
+// container's mouth whose inside bottom was unseen or removed with the table). False with the
+// verdict.
 bool clear_of_support(Loop& loop, const PointIndex& index, const Eigen::AlignedBox3d& bounds,
-                      const RankingOptions& options, const Hole& hole) {
-  if (!room_above_support(loop, options, hole)) return false;
-  const auto [down, t_floor] = passage_down(loop, options, hole);
+                      const RankingOptions& options, const Hole& hole, const PassageDown& below) {
+  const auto& [down, t_floor] = below;
   if (!std::isfinite(t_floor)) return true;
   // Within the object's extent (its lowest points may be cropped just above the table).
   const double link = options.link_distance > 0 ? options.link_distance : 0.01;
@@ -361,8 +360,9 @@ bool clear_of_support(Loop& loop, const PointIndex& index, const Eigen::AlignedB
 }
 
 // `bounds`: the cloud's bounding box (computed once for all loops). The stages in order, each
-// refusing with its verdict: the hole's size, seen through, an open passage into seen space (room
-// above the support told first with cameras), the support, the closed hand around the bar.
+// refusing with its verdict: the hole's size, seen through, an open passage into seen space, room
+// above the support (told before the passage with cameras), not a cavity's opening, the closed
+// hand around the bar.
 void assess(Loop& loop, const PointIndex& index, const Eigen::AlignedBox3d& bounds,
             const std::vector<DepthView>& views, const RankingOptions& options) {
   loop.length = closed_length(loop.points);
@@ -390,10 +390,12 @@ void assess(Loop& loop, const PointIndex& index, const Eigen::AlignedBox3d& boun
   }
   if (!seen_through(loop, views, hole)) return;
   const Passage passage = probe_passage(loop, index, views, options, hole, min_hole);
+  const PassageDown below = passage_down(loop, options, hole);
   // What the cameras saw beyond a hole lying on the table does not matter: told first.
-  if (passage.sensed && !room_above_support(loop, options, hole)) return;
+  if (passage.sensed && !room_above_support(loop, options, below)) return;
   if (!passage_open(loop, passage, options)) return;
-  if (!clear_of_support(loop, index, bounds, options, hole)) return;
+  if (!passage.sensed && !room_above_support(loop, options, below)) return;
+  if (!clear_of_support(loop, index, bounds, options, hole, below)) return;
   // The closed hand around the bar.
   measure_bar(loop, index, views, options);
   if (options.closed_aperture > 0 && !(loop.bar_thickness <= widest_bar(options.closed_aperture))) {

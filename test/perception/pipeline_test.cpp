@@ -164,21 +164,26 @@ TEST(Topology, VisibleSurfaceOfThePurseFromTwoViews) {
   EXPECT_EQ(m.views.size(), 2u);
 }
 
-// Depth files rendered into a temporary directory, then the full pipeline.
-ObjectModel from_depth(int cameras, double sigma, std::uint64_t seed = 1) {
-  test::TempDir dir;
-  DepthNoise noise;
-  noise.sigma = sigma;
-  noise.seed = seed;
-  const auto files = objects::write_purse_depth_example(dir.path().string(), cameras, noise);
+// The full pipeline on depth files, given as (png, camera yaml) pairs.
+ObjectModel from_files(const std::vector<std::pair<std::string, std::string>>& files,
+                       const PerceptionOptions& o) {
   std::vector<std::string> pngs, cams;
   for (const auto& [png, yaml] : files) {
     pngs.push_back(png);
     cams.push_back(yaml);
   }
+  return build_object_model(load_inputs(pngs, cams), o);
+}
+
+// The purse's depth files rendered into a temporary directory, then the full pipeline.
+ObjectModel from_depth(int cameras, double sigma, std::uint64_t seed = 1) {
+  test::TempDir dir;
+  DepthNoise noise;
+  noise.sigma = sigma;
+  noise.seed = seed;
   PerceptionOptions o;
   o.seed = seed;
-  return build_object_model(load_inputs(pngs, cams), o);
+  return from_files(objects::write_purse_depth_example(dir.path().string(), cameras, noise), o);
 }
 
 void expect_handle_first(const ObjectModel& m) {
@@ -262,15 +267,10 @@ TEST(Depth, OcclusionShadowIsNotClaspable) {
 ObjectModel on_the_table(TriangleMesh scene) {
   append_mesh(scene, objects::ground_plane(1.2));
   test::TempDir dir;
-  std::vector<std::string> pngs, cams;
-  for (const auto& [png, yaml] :
-       objects::write_depth_files(scene, objects::purse_cameras(2), dir.path().string(), "s")) {
-    pngs.push_back(png);
-    cams.push_back(yaml);
-  }
   PerceptionOptions o;
   o.finger_thickness = 0.014;
-  return build_object_model(load_inputs(pngs, cams), o);
+  return from_files(
+      objects::write_depth_files(scene, objects::purse_cameras(2), dir.path().string(), "s"), o);
 }
 
 // The loops within 3 cm of `where` are blocked by the support, with no camera to add: none
@@ -307,8 +307,11 @@ TEST(Depth, AHoleFacingTheTableIsBlockedByTheSupportNotLeftUnseen) {
       Eigen::AlignedBox3d(Eigen::Vector3d(-0.1, -0.1, -0.01), Eigen::Vector3d(0.1, 0.1, 0.08)),
       0.004);
   const ObjectModel m = on_the_table(mesh);
-  for (const Loop& l : m.loops)
-    if (l.centre.head<2>().norm() < 0.03) EXPECT_GT(l.centre.z(), 0.05) << "the room test passes";
+  for (const Loop& l : m.loops) {
+    if (l.centre.head<2>().norm() < 0.03) {
+      EXPECT_GT(l.centre.z(), 0.05) << "the room test passes";
+    }
+  }
   expect_blocked_by_support(m, Eigen::Vector3d::Zero());
 }
 
